@@ -1,0 +1,68 @@
+//! The error type of the crate.
+
+/// Everything that can go wrong when building a curve from user input.
+///
+/// Every public entry point validates its input and reports problems with one of these
+/// variants; none of them panics, loops forever or returns NaN on bad input.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// Fewer input points than the curve type needs.
+    #[error("too few points: {kind} needs at least {needed}, got {got}")]
+    TooFewPoints {
+        /// What was being built ("closed curve", "open curve", ...).
+        kind: &'static str,
+        /// The minimum number of points.
+        needed: usize,
+        /// The number of points given.
+        got: usize,
+    },
+    /// A coordinate is NaN or infinite.
+    #[error("point {index} has a coordinate that is NaN or infinite")]
+    NonFinitePoint {
+        /// Index of the offending point.
+        index: usize,
+    },
+    /// Two consecutive input points coincide (or nearly so, relative to the drawing size).
+    #[error("points {index} and {next} coincide")]
+    RepeatedPoint {
+        /// Index of the first point of the pair.
+        index: usize,
+        /// Index of the second point of the pair (wraps around for closed curves).
+        next: usize,
+    },
+    /// All points of a closed curve lie on one line, so no closed curve through them exists.
+    #[error("all points of the closed curve are collinear")]
+    Collinear,
+    /// A shape parameter is outside its admissible range or not finite.
+    #[error("shape parameter {index} is {value}, outside [{min}, {max})")]
+    ShapeOutOfRange {
+        /// Index of the input point that the parameter belongs to.
+        index: usize,
+        /// The value given.
+        value: f64,
+        /// The smallest admissible value.
+        min: f64,
+        /// The bound that the value must stay below.
+        max: f64,
+    },
+    /// A per-point shape list whose length does not match the number of points.
+    #[error("expected {expected} shape parameters (one per point), got {got}")]
+    ShapeCount {
+        /// The number of input points.
+        expected: usize,
+        /// The number of shape parameters given.
+        got: usize,
+    },
+    /// A solver option (tolerance, iteration cap, ...) is not usable.
+    #[error("invalid option: {0}")]
+    InvalidOption(&'static str),
+    /// The solver stopped at its iteration cap before reaching the tolerance.
+    #[error("did not converge in {iterations} iterations (relative residual {residual:e})")]
+    NotConverged {
+        /// Iterations performed.
+        iterations: usize,
+        /// The relative residual reached (interpolation error / drawing size).
+        residual: f64,
+    },
+}
