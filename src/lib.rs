@@ -10,3 +10,16 @@ pub mod render;
 
 pub use error::Error;
 pub use point3::{Point3, Vec3};
+mod basis;
+mod linalg;
+mod solver;
+mod spline;
+
+pub use spline::{
+    Coords, Scheme, Segment, Shape, SolveOptions, SolveReport, Solver, Solver3, SolverN, Spline,
+    Spline3,
+};
+#[cfg(feature = "serde")]
+mod design;
+#[cfg(feature = "serde")]
+pub use design::{Design, DesignCurve};

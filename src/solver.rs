@@ -1,0 +1,987 @@
+//! The κ/εκ-curve solver, written once for points of any dimension `D` (2D and 3D).
+//!
+//! # Unknowns and equations
+//! For each input point `p_j` that a segment must peak at, the unknowns are the middle
+//! control point `c_j` (`D` numbers), the joint ratio `λ_j` and the peak parameter `t_j`
+//! (block size `B = D + 2`). The segment `j` has control points
+//! `c_{j,0} = (1-λ_{j-1}) c_{j-1} + λ_{j-1} c_j`, `c_j`, `c_{j,2} = (1-λ_j) c_j + λ_j c_{j+1}`
+//! (seed 000 eq. 7, G1 by construction) and the equations are
+//! - interpolation `C_j(t_j) = p_j` (seed 000 eq. 5),
+//! - the G2 joint `κ_j(1) = κ_{j+1}(0)` written as `(1-λ_j) α_j - λ_j β_j = 0` with
+//!   `α_j = √(k_j (1-λ_{j-1}) T_j)`, `β_j = √(k_{j+1} λ_{j+1} T_{j+1})`,
+//!   `T_j = Δ(c_{j-1}, c_j, c_{j+1})` (seed 000 eqs. 8–10; `k` is the basis' end coefficient),
+//! - the curvature peak `dκ_j/dt (t_j) = 0` in the area-free form of [`crate::basis`].
+//!
+//! # Method
+//! A few iterations of the classic local/global loop (seed 000 Algorithm 1: λ, then `t` by a
+//! bracketed 1-D root solve, then a (cyclic) tridiagonal solve for the `c_j`) give a start;
+//! Newton's method on the whole system then converges quadratically. The Jacobian is
+//! block-banded (block row `j` touches block columns `j-1 ..= j+2`); closed curves wrap
+//! around, which is handled by a bordered solve. Each Newton step costs `O(m)`. A
+//! backtracking line search on the scaled residual globalizes it, with classic iterations as
+//! the fallback when a step fails. Open curves are the same system with fixed "ghost"
+//! control points `c_{-1} = p_first`, `c_n = p_last` and `λ_{-1} = 0`, `λ_{n-1} = 1`.
+
+use crate::basis::{CubicEk, SegmentBasis, Stationarity};
+use crate::linalg::{solve_tridiagonal, BandLu, BorderedLu};
+
+/// Regularization of the squared doubled triangle area (Gram determinant), in normalized
+/// coordinates (drawing size 1): keeps `√T` differentiable for straight stretches while far
+/// below any real area (a triangle with sides 1e-10 has `g ≈ 1e-40`).
+const EPS_GRAM: f64 = 1e-60;
+/// Bounds for λ during the line search (it must stay strictly inside (0, 1)).
+const LAMBDA_MIN: f64 = 1e-12;
+/// Iterations of the classic loop used to start Newton from a cold start.
+const CLASSIC_START: usize = 3;
+/// Iteration cap of the 1-D root solve for `t` in the classic loop.
+const ROOT_ITERATIONS: usize = 60;
+
+#[inline]
+fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
+    core::array::from_fn(|k| a[k] - b[k])
+}
+
+#[inline]
+fn dot<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
+    (0..D).map(|k| a[k] * b[k]).sum()
+}
+
+#[inline]
+fn lerp<const D: usize>(a: [f64; D], b: [f64; D], t: f64) -> [f64; D] {
+    core::array::from_fn(|k| a[k] + t * (b[k] - a[k]))
+}
+
+/// Half the area of the parallelogram spanned by `a - b` and `c - b` (the triangle area),
+/// regularized, with its gradient with respect to `a` and `c` (that for `b` is minus their sum).
+#[inline]
+fn triangle<const D: usize>(a: [f64; D], b: [f64; D], c: [f64; D]) -> (f64, [f64; D], [f64; D]) {
+    let u = sub(a, b);
+    let v = sub(c, b);
+    let (uu, vv, uv) = (dot(u, u), dot(v, v), dot(u, v));
+    let g = (uu * vv - uv * uv).max(0.0) + EPS_GRAM;
+    let sq = g.sqrt();
+    let dg = 1.0 / (4.0 * sq);
+    let ga = core::array::from_fn(|k| dg * 2.0 * (vv * u[k] - uv * v[k]));
+    let gc = core::array::from_fn(|k| dg * 2.0 * (uu * v[k] - uv * u[k]));
+    (0.5 * sq, ga, gc)
+}
+
+/// The data of one solve: targets, shapes and topology, in normalized coordinates.
+#[derive(Clone, Debug)]
+pub(crate) struct Problem<const D: usize> {
+    /// Closed curve (cyclic indices) or open (ghost ends).
+    pub closed: bool,
+    /// The points the segments must peak at, one per unknown block.
+    pub p: Vec<[f64; D]>,
+    /// Open curves: the first and last input points.
+    pub ghost: [[f64; D]; 2],
+    /// The segment basis of each block.
+    pub basis: Vec<CubicEk>,
+}
+
+/// The unknowns.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct State<const D: usize> {
+    pub c: Vec<[f64; D]>,
+    pub lam: Vec<f64>,
+    pub t: Vec<f64>,
+}
+
+/// What a solve reports.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Outcome {
+    pub iterations: usize,
+    pub newton_steps: usize,
+    pub converged: bool,
+    pub residual: f64,
+}
+
+/// The variables a block equation depends on.
+#[derive(Clone, Copy)]
+struct Local<const D: usize> {
+    cm: [f64; D],
+    c0: [f64; D],
+    c1: [f64; D],
+    c2: [f64; D],
+    lm: f64,
+    l0: f64,
+    l1: f64,
+    t: f64,
+}
+
+/// The linear system of one Newton step.
+#[derive(Clone, Debug, Default)]
+struct Linear {
+    closed: bool,
+    band: BandLu,
+    bord: BorderedLu,
+}
+
+impl Linear {
+    fn reset(&mut self, closed: bool, n: usize, b: usize) {
+        self.closed = closed;
+        let (kl, ku) = (2 * b - 1, 3 * b - 1);
+        if closed {
+            self.bord.reset((n - 2) * b, 2 * b, kl, ku);
+        } else {
+            self.band.reset(n * b, kl, ku);
+        }
+    }
+
+    #[inline]
+    fn add(&mut self, i: usize, j: usize, v: f64) {
+        if self.closed {
+            self.bord.add(i, j, v);
+        } else {
+            self.band.add(i, j, v);
+        }
+    }
+
+    fn factor(&mut self) -> bool {
+        if self.closed {
+            self.bord.factor()
+        } else {
+            self.band.factor()
+        }
+    }
+
+    fn solve(&mut self, x: &mut [f64]) {
+        if self.closed {
+            self.bord.solve(x);
+        } else {
+            self.band.solve(x);
+        }
+    }
+}
+
+/// Solver options in normalized units.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Settings {
+    pub tolerance: f64,
+    pub max_iterations: usize,
+}
+
+/// Reusable solver state: the unknowns, a trial copy for the line search, and all buffers.
+/// After the first solve of a given size nothing is allocated.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Workspace<const D: usize, const B: usize> {
+    pub state: State<D>,
+    trial: State<D>,
+    res: Vec<[f64; B]>,
+    scale: Vec<[f64; 2]>,
+    step: Vec<f64>,
+    lin: Linear,
+    tri: [Vec<f64>; 3],
+    tri_d: Vec<[f64; D]>,
+    scratch: Vec<f64>,
+}
+
+impl<const D: usize, const B: usize> Workspace<D, B> {
+    const CHECK: () = assert!(B == D + 2, "block size must be D + 2");
+
+    /// Number of unknown blocks.
+    fn n(&self) -> usize {
+        self.state.t.len()
+    }
+
+    /// Allocate for `n` blocks and set the cold start: `c = p`, `λ = ½`, `t = ½`.
+    pub(crate) fn cold_start(&mut self, prob: &Problem<D>) {
+        #[allow(clippy::let_unit_value)]
+        let _ = Self::CHECK;
+        let n = prob.p.len();
+        let st = &mut self.state;
+        st.c.clear();
+        st.c.extend_from_slice(&prob.p);
+        st.lam.clear();
+        st.lam.resize(n, 0.5);
+        if !prob.closed {
+            st.lam[n - 1] = 1.0;
+        }
+        st.t.clear();
+        st.t.resize(n, 0.5);
+        self.trial.clone_from(&self.state);
+    }
+
+    /// Solve from the current state (a cold start or a previous solution).
+    pub(crate) fn solve(
+        &mut self,
+        prob: &Problem<D>,
+        set: &Settings,
+        classic_start: bool,
+    ) -> Outcome {
+        let n = prob.p.len();
+        debug_assert_eq!(self.n(), n);
+        self.trial.clone_from(&self.state);
+        self.res.resize(n, [0.0; B]);
+        self.scale.resize(n, [1.0; 2]);
+        self.step.resize(n * B, 0.0);
+        let mut out = Outcome::default();
+        if classic_start {
+            let k0 = std::env::var("KAPPA_K0")
+                .ok()
+                .and_then(|s| s.parse().ok())
+                .unwrap_or(CLASSIC_START);
+            for _ in 0..k0 {
+                self.classic_iteration(prob);
+                out.iterations += 1;
+            }
+        }
+        loop {
+            self.lin.reset(prob.closed, n, B);
+            let phi = self.assemble(prob, true);
+            out.residual = self.max_residual();
+            if out.residual <= set.tolerance {
+                out.converged = true;
+                return out;
+            }
+            if out.iterations >= set.max_iterations {
+                return out;
+            }
+            out.iterations += 1;
+            if std::env::var("KAPPA_DEBUG").is_ok() {
+                let st = &self.state;
+                eprintln!(
+                    "it {} phi {:e} max {:e} lam {:?} t {:?}",
+                    out.iterations, phi, out.residual, st.lam, st.t
+                );
+            }
+            if !phi.is_finite() || !self.newton_step(prob, phi) {
+                self.classic_iteration(prob);
+            } else {
+                out.newton_steps += 1;
+            }
+        }
+    }
+
+    /// Largest scaled residual component.
+    fn max_residual(&self) -> f64 {
+        self.res
+            .iter()
+            .flat_map(|r| r.iter())
+            .fold(0.0f64, |m, &x| {
+                if x.is_nan() {
+                    f64::INFINITY
+                } else {
+                    m.max(x.abs())
+                }
+            })
+    }
+
+    /// One Newton step with backtracking; `false` if no acceptable step was found.
+    fn newton_step(&mut self, prob: &Problem<D>, phi: f64) -> bool {
+        if !self.lin.factor() {
+            return false;
+        }
+        let n = self.n();
+        for (j, r) in self.res.iter().enumerate() {
+            for (k, &v) in r.iter().enumerate() {
+                self.step[j * B + k] = -v;
+            }
+        }
+        self.lin.solve(&mut self.step);
+        if !self.step.iter().all(|x| x.is_finite()) {
+            return false;
+        }
+        // Keep λ inside (0, 1) and t inside [0, 1].
+        let mut smax: f64 = 1.0;
+        let st = &self.state;
+        for j in 0..n {
+            let dl = self.step[j * B + D];
+            let l = st.lam[j];
+            if dl < 0.0 {
+                smax = smax.min(0.99 * (l - LAMBDA_MIN) / -dl);
+            } else if dl > 0.0 {
+                smax = smax.min(0.99 * (1.0 - LAMBDA_MIN - l) / dl);
+            }
+            let dt = self.step[j * B + D + 1];
+            let t = st.t[j];
+            if dt < 0.0 {
+                smax = smax.min(0.999 * t / -dt + 1e-300);
+            } else if dt > 0.0 {
+                smax = smax.min(0.999 * (1.0 - t) / dt + 1e-300);
+            }
+        }
+        let mut s = smax.max(0.0);
+        while s > 1e-10 {
+            for j in 0..n {
+                for k in 0..D {
+                    self.trial.c[j][k] = self.state.c[j][k] + s * self.step[j * B + k];
+                }
+                self.trial.lam[j] = self.state.lam[j] + s * self.step[j * B + D];
+                self.trial.t[j] = (self.state.t[j] + s * self.step[j * B + D + 1]).clamp(0.0, 1.0);
+            }
+            let phi_trial = self.trial_merit(prob);
+            if phi_trial <= (1.0 - 1e-4 * s) * phi {
+                core::mem::swap(&mut self.state, &mut self.trial);
+                return true;
+            }
+            s *= 0.5;
+        }
+        false
+    }
+
+    /// Gather the variables of block `j` from `st`.
+    #[inline]
+    fn local(prob: &Problem<D>, st: &State<D>, j: usize) -> Local<D> {
+        let n = st.t.len();
+        let c = |i: isize| -> [f64; D] {
+            if prob.closed {
+                st.c[i.rem_euclid(n as isize) as usize]
+            } else if i < 0 {
+                prob.ghost[0]
+            } else if i as usize >= n {
+                prob.ghost[1]
+            } else {
+                st.c[i as usize]
+            }
+        };
+        let lam = |i: isize| -> f64 {
+            if prob.closed {
+                st.lam[i.rem_euclid(n as isize) as usize]
+            } else if i < 0 {
+                0.0
+            } else if i as usize >= n {
+                1.0
+            } else {
+                st.lam[i as usize]
+            }
+        };
+        let j = j as isize;
+        Local {
+            cm: c(j - 1),
+            c0: c(j),
+            c1: c(j + 1),
+            c2: c(j + 2),
+            lm: lam(j - 1),
+            l0: lam(j),
+            l1: lam(j + 1),
+            t: st.t[j as usize],
+        }
+    }
+
+    /// Merit `½|R|²` of the trial state, with the row scales of the current state.
+    fn trial_merit(&self, prob: &Problem<D>) -> f64 {
+        let mut phi = 0.0;
+        for j in 0..self.n() {
+            let loc = Self::local(prob, &self.trial, j);
+            let mut sc = self.scale[j];
+            let r = Self::block::<true>(prob, j, &loc, &mut sc);
+            phi += r.iter().map(|v| 0.5 * v * v).sum::<f64>();
+        }
+        if phi.is_nan() {
+            f64::INFINITY
+        } else {
+            phi
+        }
+    }
+
+    /// Evaluate the scaled residual of the current state (and, with `jac`, the scaled
+    /// Jacobian into the linear system). Returns the merit `½|R|²`.
+    fn assemble(&mut self, prob: &Problem<D>, jac: bool) -> f64 {
+        let n = self.n();
+        let mut phi = 0.0;
+        for j in 0..n {
+            let loc = Self::local(prob, &self.state, j);
+            let mut scale = [1.0; 2];
+            let r = if jac {
+                let lin = &mut self.lin;
+                let mut sink = |row: usize, col: Var, v: f64| {
+                    if let Some(c) = col.index::<D, B>(prob.closed, n, j) {
+                        lin.add(j * B + row, c, v);
+                    }
+                };
+                Self::eval_block::<true, false>(prob, j, &loc, &mut scale, &mut sink)
+            } else {
+                Self::block::<false>(prob, j, &loc, &mut scale)
+            };
+            self.scale[j] = scale;
+            let rs = r;
+            for v in rs.iter() {
+                phi += 0.5 * v * v;
+            }
+            self.res[j] = rs;
+        }
+        phi
+    }
+
+    /// The scaled residual of block `j`; with `FROZEN`, the row scales in `scale` are used
+    /// instead of computed (and stored there).
+    #[inline]
+    fn block<const FROZEN: bool>(
+        prob: &Problem<D>,
+        j: usize,
+        loc: &Local<D>,
+        scale: &mut [f64; 2],
+    ) -> [f64; B] {
+        let mut ignore = |_: usize, _: Var, _: f64| {};
+        Self::eval_block::<false, FROZEN>(prob, j, loc, scale, &mut ignore)
+    }
+
+    /// Scaled residual of block `j`; with `JAC`, also every Jacobian entry `(row, variable,
+    /// value)` (multiplied by the row scale) through `sink`. With `FROZEN`, the row scales
+    /// come from `scale`; otherwise they are computed and stored there.
+    #[inline(always)]
+    fn eval_block<const JAC: bool, const FROZEN: bool>(
+        prob: &Problem<D>,
+        j: usize,
+        l: &Local<D>,
+        scale: &mut [f64; 2],
+        sink: &mut impl FnMut(usize, Var, f64),
+    ) -> [f64; B] {
+        let n = prob.p.len();
+        let basis = prob.basis[j];
+        let w = basis.weights(l.t);
+        let (w0, w2) = (w[0][0], w[0][1]);
+        let em = sub(l.c0, l.cm); // c_j - c_{j-1}
+        let e0 = sub(l.c1, l.c0); // c_{j+1} - c_j
+        let om = 1.0 - l.lm;
+        let r: [f64; D] = core::array::from_fn(|k| om * em[k]);
+        let s: [f64; D] = core::array::from_fn(|k| l.l0 * e0[k]);
+        let mut res = [0.0; B];
+        // Interpolation.
+        for k in 0..D {
+            res[k] = l.c0[k] - w0 * r[k] + w2 * s[k] - prob.p[j][k];
+        }
+        // Curvature peak.
+        let st = Stationarity::new(&w);
+        let (rr, rs, ss) = (dot(r, r), dot(r, s), dot(s, s));
+        let rt = st.c[0] * rr + st.c[1] * rs + st.c[2] * ss;
+        let mag = st.c[0].abs() * rr + st.c[1].abs() * rs.abs() + st.c[2].abs() * ss;
+        let sc_t = if FROZEN {
+            scale[1]
+        } else {
+            -1.0 / (mag + 1e-300)
+        };
+        // Peak condition as a box complementarity (semi-smooth Newton): with `g` the scaled
+        // stationarity residual (increasing in t through a maximum), `t - clamp(t - g, 0, 1)`
+        // is `g` inside, `t` when the peak is forced to the start, `t - 1` at the end.
+        let g = rt * sc_t;
+        let z = l.t - g;
+        let peak_end = if z <= 0.0 {
+            Some(0.0)
+        } else if z >= 1.0 {
+            Some(1.0)
+        } else {
+            None
+        };
+        res[D + 1] = match peak_end {
+            Some(end) => l.t - end,
+            None => g,
+        };
+        scale[1] = sc_t;
+        // G2 joint (trivial for the last block of an open curve: λ_{n-1} = 1).
+        let last_open = !prob.closed && j == n - 1;
+        let (alpha, beta, tj, tj1, k0, k1);
+        if last_open {
+            res[D] = l.l0 - 1.0;
+            if !FROZEN {
+                scale[0] = 1.0;
+            }
+            alpha = 0.0;
+            beta = 0.0;
+            tj = (0.0, [0.0; D], [0.0; D]);
+            tj1 = tj;
+            k0 = 0.0;
+            k1 = 0.0;
+        } else {
+            k0 = basis.end_coefficient();
+            k1 = prob.basis[(j + 1) % n].end_coefficient();
+            tj = triangle(l.cm, l.c0, l.c1);
+            tj1 = triangle(l.c0, l.c1, l.c2);
+            alpha = (k0 * om * tj.0).sqrt();
+            beta = (k1 * l.l1 * tj1.0).sqrt();
+            res[D] = (1.0 - l.l0) * alpha - l.l0 * beta;
+            if !FROZEN {
+                scale[0] = 1.0 / (alpha + beta + 1e-300);
+            }
+        }
+        res[D] *= scale[0];
+        if JAC {
+            // Interpolation rows.
+            let dt: [f64; D] = core::array::from_fn(|k| -w[1][0] * r[k] + w[1][1] * s[k]);
+            for k in 0..D {
+                sink(k, Var::C(-1, k), w0 * om);
+                sink(k, Var::C(0, k), 1.0 - w0 * om - w2 * l.l0);
+                sink(k, Var::C(1, k), w2 * l.l0);
+                sink(k, Var::L(-1), w0 * em[k]);
+                sink(k, Var::L(0), w2 * e0[k]);
+                sink(k, Var::T, dt[k]);
+            }
+            // Peak row.
+            let sc = sc_t;
+            if let Some(_end) = peak_end {
+                sink(D + 1, Var::T, 1.0);
+            } else {
+                let gr: [f64; D] = core::array::from_fn(|k| 2.0 * st.c[0] * r[k] + st.c[1] * s[k]);
+                let gs: [f64; D] = core::array::from_fn(|k| st.c[1] * r[k] + 2.0 * st.c[2] * s[k]);
+                for k in 0..D {
+                    sink(D + 1, Var::C(-1, k), -sc * om * gr[k]);
+                    sink(D + 1, Var::C(0, k), sc * (om * gr[k] - l.l0 * gs[k]));
+                    sink(D + 1, Var::C(1, k), sc * l.l0 * gs[k]);
+                }
+                sink(D + 1, Var::L(-1), -sc * dot(gr, em));
+                sink(D + 1, Var::L(0), sc * dot(gs, e0));
+                sink(
+                    D + 1,
+                    Var::T,
+                    sc * (st.dc[0] * rr + st.dc[1] * rs + st.dc[2] * ss),
+                );
+            }
+            // Joint row.
+            let sc = scale[0];
+            if last_open {
+                sink(D, Var::L(0), 1.0);
+            } else {
+                sink(D, Var::L(0), -sc * (alpha + beta));
+                let fa = sc * (1.0 - l.l0) / (2.0 * alpha);
+                let fb = -sc * l.l0 / (2.0 * beta);
+                // α² = k0 (1-λ_{j-1}) T_j,  β² = k1 λ_{j+1} T_{j+1}
+                sink(D, Var::L(-1), -fa * k0 * tj.0);
+                sink(D, Var::L(1), fb * k1 * tj1.0);
+                let (ga, gc) = (tj.1, tj.2);
+                let (ha, hc) = (tj1.1, tj1.2);
+                let a_t = fa * k0 * om;
+                let b_t = fb * k1 * l.l1;
+                for k in 0..D {
+                    sink(D, Var::C(-1, k), a_t * ga[k]);
+                    sink(D, Var::C(0, k), -a_t * (ga[k] + gc[k]) + b_t * ha[k]);
+                    sink(D, Var::C(1, k), a_t * gc[k] - b_t * (ha[k] + hc[k]));
+                    sink(D, Var::C(2, k), b_t * hc[k]);
+                }
+            }
+        }
+        res
+    }
+
+    /// One iteration of the classic local/global loop (seed 000 Algorithm 1), generalized
+    /// to the basis: λ from the G2 formula, `t` by a bracketed root solve of the peak
+    /// condition with `c_j` eliminated, then the (cyclic) tridiagonal system for the `c_j`.
+    pub(crate) fn classic_iteration(&mut self, prob: &Problem<D>) {
+        let n = self.n();
+        // λ (Jacobi style: from the previous λ's).
+        for j in 0..n {
+            if !prob.closed && j == n - 1 {
+                continue;
+            }
+            let l = Self::local(prob, &self.state, j);
+            let k0 = prob.basis[j].end_coefficient();
+            let k1 = prob.basis[(j + 1) % n].end_coefficient();
+            let a = (k0 * (1.0 - l.lm) * triangle(l.cm, l.c0, l.c1).0).sqrt();
+            let b = (k1 * l.l1 * triangle(l.c0, l.c1, l.c2).0).sqrt();
+            let lam = a / (a + b);
+            self.trial.lam[j] = if lam.is_finite() {
+                lam.clamp(LAMBDA_MIN, 1.0 - LAMBDA_MIN)
+            } else {
+                0.5
+            };
+        }
+        for j in 0..n {
+            if prob.closed || j + 1 < n {
+                self.state.lam[j] = self.trial.lam[j];
+            }
+        }
+        // t, and the coefficients of the linear system.
+        for a in self.tri.iter_mut() {
+            a.resize(n, 0.0);
+        }
+        self.tri_d.resize(n, [0.0; D]);
+        for j in 0..n {
+            let l = Self::local(prob, &self.state, j);
+            let q0 = lerp(l.cm, l.c0, l.lm);
+            let q2 = lerp(l.c0, l.c1, l.l0);
+            let basis = prob.basis[j];
+            let t = peak_parameter(basis, q0, q2, prob.p[j], l.t);
+            self.state.t[j] = t;
+            let w = basis.weights(t);
+            let (w0, w2) = (w[0][0], w[0][1]);
+            let mut d = prob.p[j];
+            let a = w0 * (1.0 - l.lm);
+            let c = w2 * l.l0;
+            self.tri[0][j] = a;
+            self.tri[1][j] = 1.0 - a - c;
+            self.tri[2][j] = c;
+            if !prob.closed {
+                if j == 0 {
+                    d = core::array::from_fn(|k| d[k] - a * prob.ghost[0][k]);
+                }
+                if j == n - 1 {
+                    d = core::array::from_fn(|k| d[k] - c * prob.ghost[1][k]);
+                }
+            }
+            self.tri_d[j] = d;
+        }
+        let [a, b, c] = &self.tri;
+        if solve_tridiagonal(a, b, c, &mut self.tri_d, prob.closed, &mut self.scratch)
+            && self.tri_d.iter().all(|v| v.iter().all(|x| x.is_finite()))
+        {
+            self.state.c.copy_from_slice(&self.tri_d);
+        }
+    }
+}
+
+/// Which variable of the stencil of block `j` a Jacobian entry belongs to.
+#[derive(Clone, Copy, Debug)]
+enum Var {
+    /// Component `k` of `c_{j+offset}`.
+    C(isize, usize),
+    /// `λ_{j+offset}`.
+    L(isize),
+    /// `t_j`.
+    T,
+}
+
+impl Var {
+    /// The global column, or `None` for a constant (ghost point or fixed λ of open curves).
+    #[inline]
+    fn index<const D: usize, const B: usize>(
+        self,
+        closed: bool,
+        n: usize,
+        j: usize,
+    ) -> Option<usize> {
+        let block = |off: isize| -> Option<usize> {
+            let i = j as isize + off;
+            if closed {
+                Some(i.rem_euclid(n as isize) as usize)
+            } else if i < 0 || i as usize >= n {
+                None
+            } else {
+                Some(i as usize)
+            }
+        };
+        match self {
+            Var::C(off, k) => block(off).map(|b| b * B + k),
+            Var::L(off) => {
+                let b = block(off)?;
+                if !closed && b == n - 1 && off != 0 {
+                    None
+                } else {
+                    Some(b * B + D)
+                }
+            }
+            Var::T => Some(j * B + D + 1),
+        }
+    }
+}
+
+/// The parameter `t` at which the segment from `q0` to `q2` whose middle control point makes
+/// it pass through `p` at `t` has its curvature peak (seed 000 §3.1; for the quadratic this
+/// is the cubic of seed 004 eq. 4). The peak condition, with `c_1` eliminated and multiplied
+/// by `w1²`, is `f(t) = c_rr r̃·r̃ + c_rs r̃·s̃ + c_ss s̃·s̃` with `r̃ = (p - q0) - w2 d`,
+/// `s̃ = (q2 - p) - w0 d`, `d = q2 - q0`; `f(0) ≥ 0 ≥ f(1)`, and the root is found by
+/// Newton's method safeguarded by bisection.
+pub(crate) fn peak_parameter<const D: usize>(
+    basis: CubicEk,
+    q0: [f64; D],
+    q2: [f64; D],
+    p: [f64; D],
+    guess: f64,
+) -> f64 {
+    let d = sub(q2, q0);
+    let pa = sub(p, q0);
+    let pb = sub(q2, p);
+    let f = |t: f64| -> (f64, f64) {
+        let w = basis.weights(t);
+        let st = Stationarity::new(&w);
+        let r: [f64; D] = core::array::from_fn(|k| pa[k] - w[0][1] * d[k]);
+        let s: [f64; D] = core::array::from_fn(|k| pb[k] - w[0][0] * d[k]);
+        let dr: [f64; D] = core::array::from_fn(|k| -w[1][1] * d[k]);
+        let ds: [f64; D] = core::array::from_fn(|k| -w[1][0] * d[k]);
+        let (rr, rs, ss) = (dot(r, r), dot(r, s), dot(s, s));
+        let (drr, drs, dss) = (2.0 * dot(r, dr), dot(dr, s) + dot(r, ds), 2.0 * dot(s, ds));
+        let v = st.c[0] * rr + st.c[1] * rs + st.c[2] * ss;
+        let dv = st.dc[0] * rr
+            + st.dc[1] * rs
+            + st.dc[2] * ss
+            + st.c[0] * drr
+            + st.c[1] * drs
+            + st.c[2] * dss;
+        (v, dv)
+    };
+    let (mut lo, mut hi) = (0.0, 1.0);
+    let (flo, fhi) = (f(0.0).0, f(1.0).0);
+    if !(flo > 0.0) {
+        return 0.0;
+    }
+    if !(fhi < 0.0) {
+        return 1.0;
+    }
+    let mut t = if guess > 0.0 && guess < 1.0 {
+        guess
+    } else {
+        0.5
+    };
+    for _ in 0..ROOT_ITERATIONS {
+        let (v, dv) = f(t);
+        if v > 0.0 {
+            lo = t;
+        } else if v < 0.0 {
+            hi = t;
+        } else {
+            return t;
+        }
+        let newton = t - v / dv;
+        t = if newton > lo && newton < hi && newton.is_finite() {
+            newton
+        } else {
+            0.5 * (lo + hi)
+        };
+        if hi - lo < 1e-15 || (t - newton).abs() < 1e-16 && (v / dv).abs() < 1e-15 {
+            break;
+        }
+    }
+    t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn peak_parameter_quadratic_is_vertex() {
+        // For the quadratic the peak t is where the parabola's vertex lies.
+        let (q0, q2, p) = ([0.0, 0.0], [4.0, 0.0], [1.0, 1.5]);
+        let t = peak_parameter(CubicEk::QUADRATIC, q0, q2, p, 0.5);
+        let w = CubicEk::QUADRATIC.weights(t);
+        let c1: [f64; 2] = core::array::from_fn(|k| {
+            (p[k] - w[0][0] * q0[k] - w[0][1] * q2[k]) / (1.0 - w[0][0] - w[0][1])
+        });
+        let r = sub(c1, q0);
+        let s = sub(q2, c1);
+        let rs = sub(r, s);
+        let tv = dot(r, rs) / dot(rs, rs);
+        assert!((t - tv).abs() < 1e-12, "{t} vs {tv}");
+    }
+
+    #[test]
+    fn triangle_gradient_matches_finite_differences() {
+        let (a, b, c) = ([0.3, 1.0, -0.2], [1.0, 0.1, 0.4], [2.0, 1.2, 0.0]);
+        let (_, ga, gc) = triangle(a, b, c);
+        let h = 1e-7;
+        for k in 0..3 {
+            let mut ap = a;
+            ap[k] += h;
+            let mut am = a;
+            am[k] -= h;
+            let fd = (triangle(ap, b, c).0 - triangle(am, b, c).0) / (2.0 * h);
+            assert!((fd - ga[k]).abs() < 1e-6);
+            let mut cp = c;
+            cp[k] += h;
+            let mut cm = c;
+            cm[k] -= h;
+            let fd = (triangle(a, b, cp).0 - triangle(a, b, cm).0) / (2.0 * h);
+            assert!((fd - gc[k]).abs() < 1e-6);
+        }
+    }
+}
+
+#[cfg(test)]
+mod jacobian_tests {
+    use super::*;
+
+    fn dense_jacobian<const D: usize, const B: usize>(
+        prob: &Problem<D>,
+        st: &State<D>,
+    ) -> (Vec<f64>, Vec<f64>) {
+        let n = st.t.len();
+        let nn = n * B;
+        let mut jac = vec![0.0; nn * nn];
+        let mut res = vec![0.0; nn];
+        for j in 0..n {
+            let loc = Workspace::<D, B>::local(prob, st, j);
+            let mut scale = [1.0; 2];
+            let mut sink = |row: usize, col: Var, v: f64| {
+                if let Some(c) = col.index::<D, B>(prob.closed, n, j) {
+                    jac[(j * B + row) * nn + c] += v;
+                }
+            };
+            let r = Workspace::<D, B>::eval_block::<true, false>(prob, j, &loc, &mut scale, &mut sink);
+            res[j * B..(j + 1) * B].copy_from_slice(&r);
+        }
+        (jac, res)
+    }
+
+    fn residual<const D: usize, const B: usize>(
+        prob: &Problem<D>,
+        st: &State<D>,
+        scales: &[[f64; 2]],
+    ) -> Vec<f64> {
+        let n = st.t.len();
+        let mut out = vec![0.0; n * B];
+        for j in 0..n {
+            let loc = Workspace::<D, B>::local(prob, st, j);
+            let mut sc = scales[j];
+            let r = Workspace::<D, B>::block::<true>(prob, j, &loc, &mut sc);
+            out[j * B..(j + 1) * B].copy_from_slice(&r);
+        }
+        out
+    }
+
+    fn check<const D: usize, const B: usize>(closed: bool, a: f64) {
+        let n = 6;
+        let mut seed = 5u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64) / ((1u64 << 53) as f64)
+        };
+        let p: Vec<[f64; D]> = (0..n)
+            .map(|i| {
+                let th = i as f64 / n as f64 * 6.283;
+                core::array::from_fn(|k| match k {
+                    0 => th.cos() + 0.1 * rnd(),
+                    1 => th.sin() + 0.1 * rnd(),
+                    _ => 0.3 * rnd(),
+                })
+            })
+            .collect();
+        let prob = Problem {
+            closed,
+            p: p.clone(),
+            ghost: [[0.5; D], [-0.5; D]],
+            basis: vec![CubicEk::new(a); n],
+        };
+        let st = State {
+            c: p.iter()
+                .map(|q| core::array::from_fn(|k| q[k] * 1.1 + 0.05 * rnd()))
+                .collect(),
+            lam: (0..n)
+                .map(|i| {
+                    if !closed && i == n - 1 {
+                        1.0
+                    } else {
+                        0.3 + 0.4 * rnd()
+                    }
+                })
+                .collect(),
+            t: (0..n).map(|_| 0.3 + 0.4 * rnd()).collect(),
+        };
+        let (jac, _) = dense_jacobian::<D, B>(&prob, &st);
+        let n_all = n * B;
+        let scales: Vec<[f64; 2]> = (0..n)
+            .map(|j| {
+                let loc = Workspace::<D, B>::local(&prob, &st, j);
+                let mut s = [1.0; 2];
+                Workspace::<D, B>::block::<false>(&prob, j, &loc, &mut s);
+                s
+            })
+            .collect();
+        let h = 1e-6;
+        for col in 0..n_all {
+            let (blk, k) = (col / B, col % B);
+            if !closed && blk == n - 1 && k == D {
+                continue;
+            }
+            let mut plus = st.clone();
+            let mut minus = st.clone();
+            match k {
+                _ if k < D => {
+                    plus.c[blk][k] += h;
+                    minus.c[blk][k] -= h;
+                }
+                _ if k == D => {
+                    plus.lam[blk] += h;
+                    minus.lam[blk] -= h;
+                }
+                _ => {
+                    plus.t[blk] += h;
+                    minus.t[blk] -= h;
+                }
+            }
+            let rp = residual::<D, B>(&prob, &plus, &scales);
+            let rm = residual::<D, B>(&prob, &minus, &scales);
+            for row in 0..n_all {
+                if !closed && row == (n - 1) * B + D {
+                    continue;
+                }
+                let fd = (rp[row] - rm[row]) / (2.0 * h);
+                let an = jac[row * n_all + col];
+                assert!(
+                    (fd - an).abs() <= 1e-6 * (1.0 + fd.abs()),
+                    "closed={closed} a={a} row {row} col {col}: fd {fd} analytic {an}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn jacobian_matches_finite_differences() {
+        for &closed in &[true, false] {
+            for &a in &[2.0 / 3.0, 0.8] {
+                check::<2, 4>(closed, a);
+                check::<3, 5>(closed, a);
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod linear_tests {
+    use super::*;
+    use crate::linalg::DenseLu;
+
+    /// The Newton system assembled into the banded/bordered solver gives the same step as a
+    /// dense LU of the same entries.
+    fn check<const D: usize, const B: usize>(closed: bool, n: usize) {
+        let p: Vec<[f64; D]> = (0..n)
+            .map(|i| {
+                let th = i as f64 / n as f64 * 6.283;
+                core::array::from_fn(|k| match k {
+                    0 => th.cos() * (1.0 + 0.2 * (3.0 * th).sin()),
+                    1 => th.sin(),
+                    _ => 0.2 * (2.0 * th).cos(),
+                })
+            })
+            .collect();
+        let prob = Problem {
+            closed,
+            p: p.clone(),
+            ghost: [[1.5; D], [-1.5; D]],
+            basis: vec![CubicEk::new(0.7); n],
+        };
+        let mut ws = Workspace::<D, B>::default();
+        ws.cold_start(&prob);
+        ws.classic_iteration(&prob);
+        ws.res.resize(n, [0.0; B]);
+        ws.scale.resize(n, [1.0; 2]);
+        ws.lin.reset(closed, n, B);
+        ws.assemble(&prob, true);
+        let nn = n * B;
+        let mut dense = DenseLu::default();
+        dense.reset(nn);
+        for j in 0..n {
+            let loc = Workspace::<D, B>::local(&prob, &ws.state, j);
+            let mut scale = [1.0; 2];
+            let mut sink = |row: usize, col: Var, v: f64| {
+                if let Some(c) = col.index::<D, B>(closed, n, j) {
+                    dense.add(j * B + row, c, v);
+                }
+            };
+            Workspace::<D, B>::eval_block::<true, false>(&prob, j, &loc, &mut scale, &mut sink);
+        }
+        let rhs: Vec<f64> = ws.res.iter().flat_map(|r| r.iter().map(|v| -v)).collect();
+        let mut x1 = rhs.clone();
+        let mut x2 = rhs;
+        assert!(ws.lin.factor());
+        ws.lin.solve(&mut x1);
+        assert!(dense.factor());
+        dense.solve(&mut x2);
+        for (a, b) in x1.iter().zip(&x2) {
+            assert!(
+                (a - b).abs() <= 1e-8 * (1.0 + b.abs()),
+                "closed={closed} n={n}: {a} vs {b}"
+            );
+        }
+    }
+
+    #[test]
+    fn structured_solve_matches_dense() {
+        for &n in &[17, 9, 6, 5, 4, 3] {
+            check::<2, 4>(false, n);
+            check::<3, 5>(false, n);
+            check::<2, 4>(true, n);
+            check::<3, 5>(true, n);
+        }
+    }
+}

@@ -1,0 +1,703 @@
+//! κ-curves and cubic εκ-curves: the public front of the solver.
+
+use kurbo::{BezPath, CubicBez, ParamCurve, PathSeg, Point, QuadBez};
+
+use crate::basis::CubicEk;
+use crate::solver::{Outcome, Problem, Settings, Workspace};
+use crate::{Error, Point3};
+
+/// The relative size below which two consecutive points count as repeated, and below which
+/// the spread of a closed curve's points off their best line counts as collinear.
+const COINCIDENT: f64 = 1e-12;
+
+/// The family of segments a curve is built from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Scheme {
+    /// κ-curves (Yan et al. 2017): quadratic Bézier segments, curvature peaks at the points.
+    #[default]
+    Kappa,
+    /// εκ-curves with the constrained cubic Bernstein segment (seed 000 §3): a shape
+    /// parameter `a ∈ [2/3, 1)` per point; larger `a` gives a sharper curvature peak.
+    EkCubic,
+}
+
+impl Scheme {
+    /// The neutral shape parameter (`2/3` for both: the εκ cubic is then the κ quadratic).
+    pub const fn neutral_shape(self) -> f64 {
+        2.0 / 3.0
+    }
+
+    /// The admissible shape range `[min, max)`.
+    pub const fn shape_range(self) -> (f64, f64) {
+        match self {
+            Scheme::Kappa => (2.0 / 3.0, 2.0 / 3.0),
+            Scheme::EkCubic => (2.0 / 3.0, 1.0),
+        }
+    }
+
+    /// The polynomial degree of the output segments.
+    pub const fn degree(self) -> usize {
+        match self {
+            Scheme::Kappa => 2,
+            Scheme::EkCubic => 3,
+        }
+    }
+}
+
+/// Shape parameters of εκ-curves.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub enum Shape {
+    /// The scheme's neutral value (`a = 2/3`).
+    #[default]
+    Neutral,
+    /// One value for every point.
+    Global(f64),
+    /// One value per input point (for open curves the first and last are ignored).
+    PerPoint(Vec<f64>),
+}
+
+impl From<f64> for Shape {
+    fn from(a: f64) -> Shape {
+        Shape::Global(a)
+    }
+}
+
+/// Solver options.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolveOptions {
+    /// Convergence tolerance, relative to the drawing size (the larger side of the points'
+    /// bounding box): interpolation error, and the (dimensionless) G2 and peak conditions.
+    pub tolerance: f64,
+    /// Iteration cap (Newton steps plus classic iterations).
+    pub max_iterations: usize,
+    /// Return the best curve found instead of [`Error::NotConverged`] when the cap is hit;
+    /// [`Spline::converged`] then tells.
+    pub accept_unconverged: bool,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        SolveOptions {
+            tolerance: 1e-12,
+            max_iterations: 100,
+            accept_unconverged: false,
+        }
+    }
+}
+
+/// What a solve did.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SolveReport {
+    /// Iterations performed (classic start-up iterations plus Newton steps).
+    pub iterations: usize,
+    /// How many of them were Newton steps.
+    pub newton_steps: usize,
+    /// Whether the tolerance was reached.
+    pub converged: bool,
+    /// The largest residual left, relative to the drawing size.
+    pub residual: f64,
+}
+
+impl From<Outcome> for SolveReport {
+    fn from(o: Outcome) -> Self {
+        SolveReport {
+            iterations: o.iterations,
+            newton_steps: o.newton_steps,
+            converged: o.converged,
+            residual: o.residual,
+        }
+    }
+}
+
+/// A segment of a κ- or εκ-curve: a quadratic (κ) or constrained cubic (εκ) Bézier whose
+/// curvature peaks at its input point, at parameter `t_max`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Segment<P> {
+    /// The three defining points `Q0, Q1, Q2` (seed 000 eq. 1).
+    pub q: [P; 3],
+    /// The shape parameter `a` (`2/3` for κ-curves).
+    pub a: f64,
+    /// The parameter of the curvature peak (where the input point lies).
+    pub t_max: f64,
+    /// The polynomial degree: 2 (κ) or 3 (εκ).
+    pub degree: usize,
+}
+
+impl Segment<Point> {
+    /// The Bézier control points (3 for degree 2, 4 for degree 3).
+    pub fn control_points(&self) -> Vec<Point> {
+        match self.to_path_seg() {
+            PathSeg::Quad(q) => vec![q.p0, q.p1, q.p2],
+            PathSeg::Cubic(c) => vec![c.p0, c.p1, c.p2, c.p3],
+            PathSeg::Line(l) => vec![l.p0, l.p1],
+        }
+    }
+
+    /// The exact kurbo segment: `QuadBez` for κ, `CubicBez` for εκ.
+    pub fn to_path_seg(&self) -> PathSeg {
+        let [q0, q1, q2] = self.q;
+        if self.degree == 2 {
+            PathSeg::Quad(QuadBez::new(q0, q1, q2))
+        } else {
+            let a = self.a;
+            PathSeg::Cubic(CubicBez::new(q0, q0.lerp(q1, a), q2.lerp(q1, a), q2))
+        }
+    }
+
+    /// The point at parameter `t`.
+    pub fn eval(&self, t: f64) -> Point {
+        self.to_path_seg().eval(t)
+    }
+}
+
+impl Segment<Point3> {
+    /// The Bézier control points (3 for degree 2, 4 for degree 3).
+    pub fn control_points(&self) -> Vec<Point3> {
+        let [q0, q1, q2] = self.q;
+        if self.degree == 2 {
+            vec![q0, q1, q2]
+        } else {
+            vec![q0, q0.lerp(q1, self.a), q2.lerp(q1, self.a), q2]
+        }
+    }
+
+    /// The point at parameter `t` (de Casteljau).
+    pub fn eval(&self, t: f64) -> Point3 {
+        let mut pts = self.control_points();
+        let n = pts.len();
+        for level in 1..n {
+            for i in 0..n - level {
+                pts[i] = pts[i].lerp(pts[i + 1], t);
+            }
+        }
+        pts[0]
+    }
+}
+
+/// A solved κ- or εκ-curve through 2D points.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Spline<P = Point> {
+    scheme: Scheme,
+    closed: bool,
+    segments: Vec<Segment<P>>,
+    report: SolveReport,
+}
+
+/// A solved κ- or εκ-curve through 3D points (the base of κ-space curves).
+pub type Spline3 = Spline<Point3>;
+
+impl<P: Copy> Spline<P> {
+    /// The scheme.
+    pub fn scheme(&self) -> Scheme {
+        self.scheme
+    }
+
+    /// Whether the curve is closed.
+    pub fn is_closed(&self) -> bool {
+        self.closed
+    }
+
+    /// The segments in order along the curve: one per input point (closed) or per interior
+    /// input point (open; a two-point open curve is one straight segment).
+    pub fn segments(&self) -> &[Segment<P>] {
+        &self.segments
+    }
+
+    /// What the solver did.
+    pub fn report(&self) -> SolveReport {
+        self.report
+    }
+
+    /// Iterations used.
+    pub fn iterations(&self) -> usize {
+        self.report.iterations
+    }
+
+    /// Whether the solver reached its tolerance.
+    pub fn converged(&self) -> bool {
+        self.report.converged
+    }
+}
+
+impl Spline<Point> {
+    /// A κ-curve through `points` with default options.
+    pub fn kappa(points: &[Point], closed: bool) -> Result<Spline, Error> {
+        Solver::new().solve(points, closed, Scheme::Kappa, &Shape::Neutral)
+    }
+
+    /// A cubic εκ-curve through `points` with default options.
+    pub fn ek_cubic(
+        points: &[Point],
+        closed: bool,
+        shape: impl Into<Shape>,
+    ) -> Result<Spline, Error> {
+        Solver::new().solve(points, closed, Scheme::EkCubic, &shape.into())
+    }
+
+    /// The curve as a kurbo path of exact `QuadBez` (κ) or `CubicBez` (εκ) segments.
+    pub fn to_bezpath(&self) -> BezPath {
+        let mut path = BezPath::new();
+        for (i, seg) in self.segments.iter().enumerate() {
+            let ps = seg.to_path_seg();
+            if i == 0 {
+                path.move_to(ps.start());
+            }
+            match ps {
+                PathSeg::Line(l) => path.line_to(l.p1),
+                PathSeg::Quad(q) => path.quad_to(q.p1, q.p2),
+                PathSeg::Cubic(c) => path.curve_to(c.p1, c.p2, c.p3),
+            }
+        }
+        if self.closed && !self.segments.is_empty() {
+            path.close_path();
+        }
+        path
+    }
+
+    /// SVG path data of [`Spline::to_bezpath`].
+    pub fn to_svg(&self) -> String {
+        self.to_bezpath().to_svg()
+    }
+}
+
+impl Spline<Point3> {
+    /// A 3D κ-curve through `points` with default options.
+    pub fn kappa(points: &[Point3], closed: bool) -> Result<Spline3, Error> {
+        Solver3::new().solve(points, closed, Scheme::Kappa, &Shape::Neutral)
+    }
+}
+
+/// Affine map from user coordinates to the normalized frame (drawing size 1).
+#[derive(Clone, Copy, Debug)]
+struct Frame<const D: usize> {
+    center: [f64; D],
+    size: f64,
+}
+
+impl<const D: usize> Frame<D> {
+    fn new(points: &[[f64; D]]) -> Frame<D> {
+        let mut lo = [f64::INFINITY; D];
+        let mut hi = [f64::NEG_INFINITY; D];
+        for p in points {
+            for k in 0..D {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        let size = (0..D).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+        Frame {
+            center: core::array::from_fn(|k| 0.5 * (lo[k] + hi[k])),
+            size: if size > 0.0 { size } else { 1.0 },
+        }
+    }
+
+    fn to_local(&self, p: [f64; D]) -> [f64; D] {
+        core::array::from_fn(|k| (p[k] - self.center[k]) / self.size)
+    }
+
+    fn to_user(&self, p: [f64; D]) -> [f64; D] {
+        core::array::from_fn(|k| p[k] * self.size + self.center[k])
+    }
+}
+
+/// Conversion between user point types and coordinate arrays.
+pub trait Coords<const D: usize>: Copy {
+    /// The coordinates.
+    fn coords(self) -> [f64; D];
+    /// The point with these coordinates.
+    fn from_coords(c: [f64; D]) -> Self;
+}
+
+impl Coords<2> for Point {
+    fn coords(self) -> [f64; 2] {
+        [self.x, self.y]
+    }
+    fn from_coords(c: [f64; 2]) -> Self {
+        Point::new(c[0], c[1])
+    }
+}
+
+impl Coords<3> for Point3 {
+    fn coords(self) -> [f64; 3] {
+        [self.x, self.y, self.z]
+    }
+    fn from_coords(c: [f64; 3]) -> Self {
+        Point3::new(c[0], c[1], c[2])
+    }
+}
+
+/// A reusable solver: keeps its buffers and the last solution, so that re-solving after the
+/// points moved (the interactive case) starts from the previous curve.
+///
+/// `D` is the dimension and `B = D + 2` the block size of the Newton system; use the
+/// aliases [`Solver`] (2D) and [`Solver3`] (3D).
+#[derive(Clone, Debug)]
+pub struct SolverN<P, const D: usize, const B: usize> {
+    options: SolveOptions,
+    ws: Workspace<D, B>,
+    prob: Problem<D>,
+    frame: Frame<D>,
+    scheme: Scheme,
+    /// Input points of the last solve (user coordinates).
+    points: Vec<[f64; D]>,
+    /// Whether `ws` holds a solution matching `prob`'s structure.
+    warm: bool,
+    _marker: core::marker::PhantomData<P>,
+}
+
+/// The 2D solver.
+pub type Solver = SolverN<Point, 2, 4>;
+/// The 3D solver.
+pub type Solver3 = SolverN<Point3, 3, 5>;
+
+impl<P: Coords<D>, const D: usize, const B: usize> Default for SolverN<P, D, B> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
+    /// A solver with default options.
+    pub fn new() -> Self {
+        Self::with_options(SolveOptions::default())
+    }
+
+    /// A solver with the given options.
+    pub fn with_options(options: SolveOptions) -> Self {
+        SolverN {
+            options,
+            ws: Workspace::default(),
+            prob: Problem {
+                closed: true,
+                p: Vec::new(),
+                ghost: [[0.0; D]; 2],
+                basis: Vec::new(),
+            },
+            frame: Frame {
+                center: [0.0; D],
+                size: 1.0,
+            },
+            scheme: Scheme::Kappa,
+            points: Vec::new(),
+            warm: false,
+            _marker: core::marker::PhantomData,
+        }
+    }
+
+    /// The options.
+    pub fn options(&self) -> SolveOptions {
+        self.options
+    }
+
+    /// Solve from scratch.
+    pub fn solve(
+        &mut self,
+        points: &[P],
+        closed: bool,
+        scheme: Scheme,
+        shape: &Shape,
+    ) -> Result<Spline<P>, Error> {
+        self.setup(points, closed, scheme, shape)?;
+        self.warm = false;
+        self.run()
+    }
+
+    /// Re-solve after the points moved (same count, same topology, scheme and shapes),
+    /// starting from the previous solution. Falls back to a cold solve if there is none.
+    pub fn resolve(&mut self, points: &[P]) -> Result<Spline<P>, Error> {
+        if !self.warm || points.len() != self.points.len() {
+            let closed = self.prob.closed;
+            let shapes = self.shapes();
+            return self.solve(points, closed, self.scheme, &shapes);
+        }
+        let old_frame = self.frame;
+        let old_points = core::mem::take(&mut self.points);
+        let shapes = self.shapes();
+        self.setup(points, self.prob.closed, self.scheme, &shapes)?;
+        // Carry the previous unknowns into the new frame, moving each control point with
+        // its input point.
+        let off = if self.prob.closed { 0 } else { 1 };
+        let st = &mut self.ws.state;
+        for (j, c) in st.c.iter_mut().enumerate() {
+            let user = old_frame.to_user(*c);
+            let moved: [f64; D] = core::array::from_fn(|k| {
+                user[k] + self.points[j + off][k] - old_points[j + off][k]
+            });
+            *c = self.frame.to_local(moved);
+        }
+        self.run()
+    }
+
+    /// Re-solve with new shape parameters (same points), starting from the previous solution:
+    /// the interactive "sharpness slider" case. Falls back to a cold solve if there is none.
+    pub fn resolve_shapes(&mut self, scheme: Scheme, shape: &Shape) -> Result<Spline<P>, Error> {
+        let points: Vec<P> = self.points.iter().map(|&c| P::from_coords(c)).collect();
+        let closed = self.prob.closed;
+        if !self.warm {
+            return self.solve(&points, closed, scheme, shape);
+        }
+        let shapes = expand_shapes(scheme, shape, points.len())?;
+        let range = if closed {
+            0..points.len()
+        } else {
+            1..points.len() - 1
+        };
+        self.scheme = scheme;
+        self.prob.basis.clear();
+        self.prob
+            .basis
+            .extend(shapes[range].iter().map(|&a| CubicEk::new(a)));
+        self.run()
+    }
+
+    fn shapes(&self) -> Shape {
+        Shape::PerPoint(self.prob_shapes())
+    }
+
+    fn prob_shapes(&self) -> Vec<f64> {
+        let mut a: Vec<f64> = Vec::with_capacity(self.points.len());
+        if !self.prob.closed {
+            a.push(2.0 / 3.0);
+        }
+        a.extend(self.prob.basis.iter().map(|b| b.a()));
+        if !self.prob.closed {
+            a.push(2.0 / 3.0);
+        }
+        a
+    }
+
+    /// Validate and normalize the input into `self.prob`.
+    fn setup(
+        &mut self,
+        points: &[P],
+        closed: bool,
+        scheme: Scheme,
+        shape: &Shape,
+    ) -> Result<(), Error> {
+        let m = points.len();
+        let (kind, needed) = if closed {
+            ("a closed curve", 3)
+        } else {
+            ("an open curve", 2)
+        };
+        if m < needed {
+            return Err(Error::TooFewPoints {
+                kind,
+                needed,
+                got: m,
+            });
+        }
+        self.points.clear();
+        for (index, p) in points.iter().enumerate() {
+            let c = p.coords();
+            if !c.iter().all(|x| x.is_finite()) {
+                return Err(Error::NonFinitePoint { index });
+            }
+            self.points.push(c);
+        }
+        let options = self.options;
+        if !(options.tolerance > 0.0 && options.tolerance.is_finite()) {
+            return Err(Error::InvalidOption(
+                "tolerance must be positive and finite",
+            ));
+        }
+        self.frame = Frame::new(&self.points);
+        let local: Vec<[f64; D]> = self
+            .points
+            .iter()
+            .map(|&p| self.frame.to_local(p))
+            .collect();
+        let pairs = if closed { m } else { m - 1 };
+        for i in 0..pairs {
+            let next = (i + 1) % m;
+            let d = (0..D)
+                .map(|k| (local[next][k] - local[i][k]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            if d <= COINCIDENT {
+                return Err(Error::RepeatedPoint { index: i, next });
+            }
+        }
+        if closed && collinear(&local) {
+            return Err(Error::Collinear);
+        }
+        let shapes = expand_shapes(scheme, shape, m)?;
+        self.scheme = scheme;
+        let range = if closed { 0..m } else { 1..m - 1 };
+        self.prob.closed = closed;
+        self.prob.p.clear();
+        self.prob.p.extend_from_slice(&local[range.clone()]);
+        self.prob.basis.clear();
+        self.prob
+            .basis
+            .extend(shapes[range].iter().map(|&a| CubicEk::new(a)));
+        self.prob.ghost = [local[0], local[m - 1]];
+        Ok(())
+    }
+
+    fn run(&mut self) -> Result<Spline<P>, Error> {
+        let closed = self.prob.closed;
+        let m = self.points.len();
+        if !closed && m == 2 {
+            // A straight segment.
+            let (p0, p1) = (self.points[0], self.points[1]);
+            let mid: [f64; D] = core::array::from_fn(|k| 0.5 * (p0[k] + p1[k]));
+            let report = SolveReport {
+                converged: true,
+                ..SolveReport::default()
+            };
+            return Ok(Spline {
+                scheme: self.scheme,
+                closed,
+                segments: vec![Segment {
+                    q: [P::from_coords(p0), P::from_coords(mid), P::from_coords(p1)],
+                    a: 2.0 / 3.0,
+                    t_max: 0.5,
+                    degree: self.scheme.degree(),
+                }],
+                report,
+            });
+        }
+        let settings = Settings {
+            tolerance: self.options.tolerance,
+            max_iterations: self.options.max_iterations,
+        };
+        let cold = !self.warm;
+        if cold {
+            self.ws.cold_start(&self.prob);
+        }
+        let outcome = self.ws.solve(&self.prob, &settings, cold);
+        self.warm = outcome.converged;
+        if !outcome.converged && !self.options.accept_unconverged {
+            return Err(Error::NotConverged {
+                iterations: outcome.iterations,
+                residual: outcome.residual,
+            });
+        }
+        Ok(self.spline(outcome.into()))
+    }
+
+    /// Build the output from the workspace state.
+    fn spline(&self, report: SolveReport) -> Spline<P> {
+        let st = &self.ws.state;
+        let n = st.t.len();
+        let prob = &self.prob;
+        let c = |i: isize| -> [f64; D] {
+            if prob.closed {
+                st.c[i.rem_euclid(n as isize) as usize]
+            } else if i < 0 {
+                prob.ghost[0]
+            } else if i as usize >= n {
+                prob.ghost[1]
+            } else {
+                st.c[i as usize]
+            }
+        };
+        let lam = |i: isize| -> f64 {
+            if prob.closed {
+                st.lam[i.rem_euclid(n as isize) as usize]
+            } else if i < 0 {
+                0.0
+            } else if i as usize >= n {
+                1.0
+            } else {
+                st.lam[i as usize]
+            }
+        };
+        let mut segments = Vec::with_capacity(n);
+        let user = |p: [f64; D]| P::from_coords(self.frame.to_user(p));
+        for j in 0..n {
+            let ji = j as isize;
+            let joint = |a: [f64; D], b: [f64; D], l: f64| -> [f64; D] {
+                core::array::from_fn(|k| a[k] + l * (b[k] - a[k]))
+            };
+            let q0 = if !prob.closed && j == 0 {
+                prob.ghost[0]
+            } else {
+                joint(c(ji - 1), c(ji), lam(ji - 1))
+            };
+            let q2 = if !prob.closed && j == n - 1 {
+                prob.ghost[1]
+            } else {
+                joint(c(ji), c(ji + 1), lam(ji))
+            };
+            segments.push(Segment {
+                q: [user(q0), user(c(ji)), user(q2)],
+                a: prob.basis[j].a(),
+                t_max: st.t[j],
+                degree: self.scheme.degree(),
+            });
+        }
+        // Joints are computed once and shared, so consecutive segments meet exactly.
+        for j in 0..n {
+            let next = (j + 1) % n;
+            if prob.closed || next != 0 {
+                segments[next].q[0] = segments[j].q[2];
+            }
+        }
+        Spline {
+            scheme: self.scheme,
+            closed: prob.closed,
+            segments,
+            report,
+        }
+    }
+}
+
+/// Whether all points lie on one line (relative to the drawing size 1).
+fn collinear<const D: usize>(p: &[[f64; D]]) -> bool {
+    // Farthest point from p0, then the largest distance from the line through both.
+    let far = p
+        .iter()
+        .map(|q| (0..D).map(|k| (q[k] - p[0][k]).powi(2)).sum::<f64>())
+        .enumerate()
+        .fold(
+            (0, 0.0),
+            |best, (i, d)| if d > best.1 { (i, d) } else { best },
+        );
+    let dir: [f64; D] = core::array::from_fn(|k| p[far.0][k] - p[0][k]);
+    let len2 = far.1;
+    if len2 <= 0.0 {
+        return true;
+    }
+    p.iter().all(|q| {
+        let v: [f64; D] = core::array::from_fn(|k| q[k] - p[0][k]);
+        let along = (0..D).map(|k| v[k] * dir[k]).sum::<f64>() / len2;
+        let off2 = (0..D).map(|k| (v[k] - along * dir[k]).powi(2)).sum::<f64>();
+        off2.sqrt() <= COINCIDENT
+    })
+}
+
+/// Per-point shape parameters, validated.
+fn expand_shapes(scheme: Scheme, shape: &Shape, m: usize) -> Result<Vec<f64>, Error> {
+    let (min, max) = scheme.shape_range();
+    let values = match shape {
+        Shape::Neutral => vec![scheme.neutral_shape(); m],
+        Shape::Global(a) => vec![*a; m],
+        Shape::PerPoint(v) => {
+            if v.len() != m {
+                return Err(Error::ShapeCount {
+                    expected: m,
+                    got: v.len(),
+                });
+            }
+            v.clone()
+        }
+    };
+    for (index, &value) in values.iter().enumerate() {
+        if scheme == Scheme::Kappa && value != min {
+            return Err(Error::InvalidOption(
+                "the kappa scheme has no shape parameter (use ek-cubic)",
+            ));
+        }
+        if scheme == Scheme::EkCubic && !(value >= min && value < max) {
+            return Err(Error::ShapeOutOfRange {
+                index,
+                value,
+                min,
+                max,
+            });
+        }
+    }
+    Ok(values)
+}
