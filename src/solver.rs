@@ -7,9 +7,11 @@
 //! `c_{j,0} = (1-λ_{j-1}) c_{j-1} + λ_{j-1} c_j`, `c_j`, `c_{j,2} = (1-λ_j) c_j + λ_j c_{j+1}`
 //! (seed 000 eq. 7, G1 by construction) and the equations are
 //! - interpolation `C_j(t_j) = p_j` (seed 000 eq. 5),
-//! - the G2 joint `κ_j(1) = κ_{j+1}(0)` written as `(1-λ_j) α_j - λ_j β_j = 0` with
-//!   `α_j = √(k_j (1-λ_{j-1}) T_j)`, `β_j = √(k_{j+1} λ_{j+1} T_{j+1})`,
-//!   `T_j = Δ(c_{j-1}, c_j, c_{j+1})` (seed 000 eqs. 8–10; `k` is the basis' end coefficient),
+//! - the G2 joint `κ_j(1) = κ_{j+1}(0)` written as `(1-λ_j)² X_j - λ_j² Y_j = 0` with
+//!   `X_j = k_j (1-λ_{j-1}) T_j`, `Y_j = k_{j+1} λ_{j+1} T_{j+1}`,
+//!   `T_j = Δ(c_{j-1}, c_j, c_{j+1})` (seed 000 eqs. 8–10; `k` is the basis' end
+//!   coefficient). This squared form has bounded derivatives where a segment turns straight
+//!   (`T → 0`), unlike `λ = √X / (√X + √Y)`, so Newton can pass through an orientation flip,
 //! - the curvature peak `dκ_j/dt (t_j) = 0` in the area-free form of [`crate::basis`].
 //!
 //! # Method
@@ -33,6 +35,15 @@ const EPS_GRAM: f64 = 1e-60;
 const LAMBDA_MIN: f64 = 1e-12;
 /// Iterations of the classic loop used to start Newton from a cold start.
 const CLASSIC_START: usize = 3;
+/// The second attempt starts Newton after this many classic iterations.
+const CLASSIC_START_2: usize = 1;
+/// Iteration budget of each direct attempt before the next strategy is tried.
+const ATTEMPT_BUDGET: usize = 30;
+/// The shape parameter where the solver converges most reliably, the start of the
+/// continuation fallback (measured on the drawings of the εκ paper).
+const A_HOME: f64 = 0.85;
+/// Newton budget of one continuation step.
+const STEP_BUDGET: usize = 16;
 /// Iteration cap of the 1-D root solve for `t` in the classic loop.
 const ROOT_ITERATIONS: usize = 60;
 
@@ -202,13 +213,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         self.trial.clone_from(&self.state);
     }
 
-    /// Solve from the current state (a cold start or a previous solution).
-    pub(crate) fn solve(
-        &mut self,
-        prob: &Problem<D>,
-        set: &Settings,
-        classic_start: bool,
-    ) -> Outcome {
+    /// Solve from the current state (a cold start or a previous solution), after `classic`
+    /// iterations of the classic loop.
+    pub(crate) fn solve(&mut self, prob: &Problem<D>, set: &Settings, classic: usize) -> Outcome {
         let n = prob.p.len();
         debug_assert_eq!(self.n(), n);
         self.trial.clone_from(&self.state);
@@ -216,15 +223,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         self.scale.resize(n, [1.0; 2]);
         self.step.resize(n * B, 0.0);
         let mut out = Outcome::default();
-        if classic_start {
-            let k0 = std::env::var("KAPPA_K0")
-                .ok()
-                .and_then(|s| s.parse().ok())
-                .unwrap_or(CLASSIC_START);
-            for _ in 0..k0 {
-                self.classic_iteration(prob);
-                out.iterations += 1;
-            }
+        for _ in 0..classic {
+            self.classic_iteration(prob);
+            out.iterations += 1;
         }
         loop {
             self.lin.reset(prob.closed, n, B);
@@ -238,19 +239,108 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 return out;
             }
             out.iterations += 1;
-            if std::env::var("KAPPA_DEBUG").is_ok() {
-                let st = &self.state;
-                eprintln!(
-                    "it {} phi {:e} max {:e} lam {:?} t {:?}",
-                    out.iterations, phi, out.residual, st.lam, st.t
-                );
-            }
             if !phi.is_finite() || !self.newton_step(prob, phi) {
                 self.classic_iteration(prob);
             } else {
                 out.newton_steps += 1;
             }
         }
+    }
+
+    /// Solve from a cold start, trying in turn: Newton after a few classic iterations, Newton
+    /// after one, and continuation in the shape parameters from [`A_HOME`]. Every attempt
+    /// is capped; the total iteration count is reported.
+    pub(crate) fn solve_cold(
+        &mut self,
+        prob: &Problem<D>,
+        set: &Settings,
+        scratch: &mut Problem<D>,
+    ) -> Outcome {
+        let mut total = 0;
+        let mut best: Option<(Outcome, State<D>)> = None;
+        for classic in [CLASSIC_START, CLASSIC_START_2] {
+            let budget = Settings {
+                max_iterations: ATTEMPT_BUDGET.min(set.max_iterations.saturating_sub(total)),
+                ..*set
+            };
+            self.cold_start(prob);
+            let mut out = self.solve(prob, &budget, classic);
+            total += out.iterations;
+            out.iterations = total;
+            if out.converged {
+                return out;
+            }
+            if best.as_ref().is_none_or(|b| out.residual < b.0.residual) {
+                best = Some((out, self.state.clone()));
+            }
+        }
+        let mut out = self.continuation(prob, set, scratch, total);
+        if !out.converged {
+            if let Some((b, st)) = best {
+                if b.residual < out.residual {
+                    self.state = st;
+                    out.residual = b.residual;
+                }
+            }
+        }
+        out
+    }
+
+    /// Continuation from the shape [`A_HOME`] to the target shapes with adaptive steps.
+    fn continuation(
+        &mut self,
+        prob: &Problem<D>,
+        set: &Settings,
+        scratch: &mut Problem<D>,
+        used: usize,
+    ) -> Outcome {
+        let mut total = used;
+        let mut out = Outcome::default();
+        let blend = |scratch: &mut Problem<D>, s: f64| {
+            scratch.closed = prob.closed;
+            scratch.ghost = prob.ghost;
+            scratch.p.clone_from(&prob.p);
+            scratch.basis.clear();
+            scratch.basis.extend(
+                prob.basis
+                    .iter()
+                    .map(|b| CubicEk::new(b.a() + (1.0 - s) * (A_HOME - b.a()))),
+            );
+        };
+        blend(scratch, 0.0);
+        self.cold_start(scratch);
+        let budget = |total: usize, cap: usize| Settings {
+            max_iterations: cap.min(set.max_iterations.saturating_sub(total)),
+            ..*set
+        };
+        let first = self.solve(scratch, &budget(total, ATTEMPT_BUDGET), CLASSIC_START);
+        total += first.iterations;
+        if !first.converged {
+            out.iterations = total;
+            out.residual = f64::INFINITY;
+            return out;
+        }
+        let (mut s, mut ds) = (0.0f64, 0.25f64);
+        let mut saved = self.state.clone();
+        while s < 1.0 && total < set.max_iterations && ds > 1e-4 {
+            let s_try = (s + ds).min(1.0);
+            blend(scratch, s_try);
+            let step = self.solve(scratch, &budget(total, STEP_BUDGET), 0);
+            total += step.iterations.max(1);
+            if step.converged {
+                s = s_try;
+                saved.clone_from(&self.state);
+                ds *= 1.5;
+            } else {
+                self.state.clone_from(&saved);
+                ds *= 0.5;
+            }
+        }
+        // Final polish on the true problem (s = 1 exactly reproduces its shapes).
+        let fin = self.solve(prob, &budget(total, STEP_BUDGET), 0);
+        out = fin;
+        out.iterations = total + fin.iterations;
+        out
     }
 
     /// Largest scaled residual component.
@@ -365,7 +455,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         for j in 0..self.n() {
             let loc = Self::local(prob, &self.trial, j);
             let mut sc = self.scale[j];
-            let r = Self::block::<true>(prob, j, &loc, &mut sc);
+            let r = Self::block::<false>(prob, j, &loc, &mut sc);
             phi += r.iter().map(|v| 0.5 * v * v).sum::<f64>();
         }
         if phi.is_nan() {
@@ -471,14 +561,14 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         scale[1] = sc_t;
         // G2 joint (trivial for the last block of an open curve: λ_{n-1} = 1).
         let last_open = !prob.closed && j == n - 1;
-        let (alpha, beta, tj, tj1, k0, k1);
+        let (x, y, tj, tj1, k0, k1);
         if last_open {
             res[D] = l.l0 - 1.0;
             if !FROZEN {
                 scale[0] = 1.0;
             }
-            alpha = 0.0;
-            beta = 0.0;
+            x = 0.0;
+            y = 0.0;
             tj = (0.0, [0.0; D], [0.0; D]);
             tj1 = tj;
             k0 = 0.0;
@@ -488,11 +578,11 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             k1 = prob.basis[(j + 1) % n].end_coefficient();
             tj = triangle(l.cm, l.c0, l.c1);
             tj1 = triangle(l.c0, l.c1, l.c2);
-            alpha = (k0 * om * tj.0).sqrt();
-            beta = (k1 * l.l1 * tj1.0).sqrt();
-            res[D] = (1.0 - l.l0) * alpha - l.l0 * beta;
+            x = k0 * om * tj.0;
+            y = k1 * l.l1 * tj1.0;
+            res[D] = (1.0 - l.l0).powi(2) * x - l.l0 * l.l0 * y;
             if !FROZEN {
-                scale[0] = 1.0 / (alpha + beta + 1e-300);
+                scale[0] = 1.0 / (x + y + 1e-300);
             }
         }
         res[D] *= scale[0];
@@ -532,10 +622,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             if last_open {
                 sink(D, Var::L(0), 1.0);
             } else {
-                sink(D, Var::L(0), -sc * (alpha + beta));
-                let fa = sc * (1.0 - l.l0) / (2.0 * alpha);
-                let fb = -sc * l.l0 / (2.0 * beta);
-                // α² = k0 (1-λ_{j-1}) T_j,  β² = k1 λ_{j+1} T_{j+1}
+                sink(D, Var::L(0), -sc * 2.0 * ((1.0 - l.l0) * x + l.l0 * y));
+                let fa = sc * (1.0 - l.l0).powi(2);
+                let fb = -sc * l.l0 * l.l0;
+                // x = k0 (1-λ_{j-1}) T_j,  y = k1 λ_{j+1} T_{j+1}
                 sink(D, Var::L(-1), -fa * k0 * tj.0);
                 sink(D, Var::L(1), fb * k1 * tj1.0);
                 let (ga, gc) = (tj.1, tj.2);
@@ -795,7 +885,8 @@ mod jacobian_tests {
                     jac[(j * B + row) * nn + c] += v;
                 }
             };
-            let r = Workspace::<D, B>::eval_block::<true, false>(prob, j, &loc, &mut scale, &mut sink);
+            let r =
+                Workspace::<D, B>::eval_block::<true, false>(prob, j, &loc, &mut scale, &mut sink);
             res[j * B..(j + 1) * B].copy_from_slice(&r);
         }
         (jac, res)

@@ -79,7 +79,7 @@ impl Default for SolveOptions {
     fn default() -> Self {
         SolveOptions {
             tolerance: 1e-12,
-            max_iterations: 100,
+            max_iterations: 500,
             accept_unconverged: false,
         }
     }
@@ -336,6 +336,8 @@ pub struct SolverN<P, const D: usize, const B: usize> {
     options: SolveOptions,
     ws: Workspace<D, B>,
     prob: Problem<D>,
+    /// A second problem, for the continuation fallback.
+    scratch: Problem<D>,
     frame: Frame<D>,
     scheme: Scheme,
     /// Input points of the last solve (user coordinates).
@@ -368,6 +370,12 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             options,
             ws: Workspace::default(),
             prob: Problem {
+                closed: true,
+                p: Vec::new(),
+                ghost: [[0.0; D]; 2],
+                basis: Vec::new(),
+            },
+            scratch: Problem {
                 closed: true,
                 p: Vec::new(),
                 ghost: [[0.0; D]; 2],
@@ -562,11 +570,18 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             tolerance: self.options.tolerance,
             max_iterations: self.options.max_iterations,
         };
-        let cold = !self.warm;
-        if cold {
-            self.ws.cold_start(&self.prob);
-        }
-        let outcome = self.ws.solve(&self.prob, &settings, cold);
+        let outcome = if self.warm {
+            let warm = self.ws.solve(&self.prob, &settings, 0);
+            if warm.converged {
+                warm
+            } else {
+                let mut cold = self.ws.solve_cold(&self.prob, &settings, &mut self.scratch);
+                cold.iterations += warm.iterations;
+                cold
+            }
+        } else {
+            self.ws.solve_cold(&self.prob, &settings, &mut self.scratch)
+        };
         self.warm = outcome.converged;
         if !outcome.converged && !self.options.accept_unconverged {
             return Err(Error::NotConverged {
