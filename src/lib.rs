@@ -23,3 +23,5 @@ pub use spline::{
 mod design;
 #[cfg(feature = "serde")]
 pub use design::{Design, DesignCurve};
+mod designs;
+pub use designs::{builtin_design, BUILTIN_DESIGNS};

@@ -223,7 +223,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         self.scale.resize(n, [1.0; 2]);
         self.step.resize(n * B, 0.0);
         let mut out = Outcome::default();
-        for _ in 0..classic {
+        for _ in 0..classic.min(set.max_iterations) {
             self.classic_iteration(prob);
             out.iterations += 1;
         }
@@ -582,7 +582,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             y = k1 * l.l1 * tj1.0;
             res[D] = (1.0 - l.l0).powi(2) * x - l.l0 * l.l0 * y;
             if !FROZEN {
-                scale[0] = 1.0 / (x + y + 1e-300);
+                // Scaled, the row is (r - 1)/(r + 1) with r = κ_j(1)² / κ_{j+1}(0)²: the
+                // relative |κ| mismatch at the joint, whatever λ is.
+                scale[0] = 1.0 / ((1.0 - l.l0).powi(2) * x + l.l0 * l.l0 * y + 1e-300);
             }
         }
         res[D] *= scale[0];

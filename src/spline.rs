@@ -183,7 +183,8 @@ pub struct Spline<P = Point> {
     report: SolveReport,
 }
 
-/// A solved κ- or εκ-curve through 3D points (the base of κ-space curves).
+/// A solved κ- or εκ-curve through 3D points (the base of κ-space curves); solve with
+/// [`Solver3`].
 pub type Spline3 = Spline<Point3>;
 
 impl<P: Copy> Spline<P> {
@@ -257,13 +258,6 @@ impl Spline<Point> {
     /// SVG path data of [`Spline::to_bezpath`].
     pub fn to_svg(&self) -> String {
         self.to_bezpath().to_svg()
-    }
-}
-
-impl Spline<Point3> {
-    /// A 3D κ-curve through `points` with default options.
-    pub fn kappa(points: &[Point3], closed: bool) -> Result<Spline3, Error> {
-        Solver3::new().solve(points, closed, Scheme::Kappa, &Shape::Neutral)
     }
 }
 
@@ -566,6 +560,15 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                 report,
             });
         }
+        if !closed && collinear(&self.prob.p) && collinear(&[self.prob.ghost[0], self.prob.p[0], self.prob.ghost[1]]) {
+            self.straight_solution();
+            self.warm = true;
+            let report = SolveReport {
+                converged: true,
+                ..SolveReport::default()
+            };
+            return Ok(self.spline(report));
+        }
         let settings = Settings {
             tolerance: self.options.tolerance,
             max_iterations: self.options.max_iterations,
@@ -590,6 +593,43 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             });
         }
         Ok(self.spline(outcome.into()))
+    }
+
+    /// The solution for open input on one line: straight segments with `c_j = p_j`, joints
+    /// at the midpoints, and `t_j` where the segment passes `p_j` (|κ| is 0 everywhere, so
+    /// every parameter is a peak).
+    fn straight_solution(&mut self) {
+        self.ws.cold_start(&self.prob);
+        let n = self.prob.p.len();
+        let st = &mut self.ws.state;
+        for j in 0..n {
+            st.lam[j] = if j + 1 == n { 1.0 } else { 0.5 };
+        }
+        for j in 0..n {
+            let prev = if j == 0 { self.prob.ghost[0] } else { self.prob.p[j - 1] };
+            let next = if j + 1 == n { self.prob.ghost[1] } else { self.prob.p[j + 1] };
+            let lm = if j == 0 { 0.0 } else { 0.5 };
+            let q0: [f64; D] = core::array::from_fn(|k| prev[k] + lm * (self.prob.p[j][k] - prev[k]));
+            let q2: [f64; D] = core::array::from_fn(|k| self.prob.p[j][k] + st.lam[j] * (next[k] - self.prob.p[j][k]));
+            // Along the line the position is monotone in t: bisect for the parameter of p_j.
+            let basis = self.prob.basis[j];
+            let p = self.prob.p[j];
+            let dir: [f64; D] = core::array::from_fn(|k| q2[k] - q0[k]);
+            let along = |x: [f64; D]| (0..D).map(|k| (x[k] - q0[k]) * dir[k]).sum::<f64>();
+            let target = along(p);
+            let (mut lo, mut hi) = (0.0, 1.0);
+            for _ in 0..60 {
+                let mid = 0.5 * (lo + hi);
+                let w = crate::basis::SegmentBasis::weights(&basis, mid);
+                let x: [f64; D] = core::array::from_fn(|k| w[0][0] * q0[k] + (1.0 - w[0][0] - w[0][1]) * p[k] + w[0][1] * q2[k]);
+                if along(x) < target {
+                    lo = mid;
+                } else {
+                    hi = mid;
+                }
+            }
+            st.t[j] = 0.5 * (lo + hi);
+        }
     }
 
     /// Build the output from the workspace state.
@@ -642,6 +682,11 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                 t_max: st.t[j],
                 degree: self.scheme.degree(),
             });
+        }
+        // Open curves end exactly at the first and last input points.
+        if !prob.closed {
+            segments[0].q[0] = P::from_coords(self.points[0]);
+            segments[n - 1].q[2] = P::from_coords(self.points[self.points.len() - 1]);
         }
         // Joints are computed once and shared, so consecutive segments meet exactly.
         for j in 0..n {
