@@ -10,7 +10,10 @@ use std::hint::black_box;
 
 fn design(name: &str) -> Vec<(Vec<Point>, bool)> {
     let d = Design::from_json(builtin_design(name).unwrap()).unwrap();
-    d.curves.iter().map(|c| (c.kurbo_points(), c.is_closed())).collect()
+    d.curves
+        .iter()
+        .map(|c| (c.kurbo_points(), c.is_closed()))
+        .collect()
 }
 
 /// A closed wavy loop of `n` points.

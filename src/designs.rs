@@ -11,14 +11,32 @@ pub const BUILTIN_DESIGNS: &[(&str, &str)] = &[
     ("pumpkin", include_str!("../data/designs/pumpkin.json")),
     ("rabbit", include_str!("../data/designs/rabbit.json")),
     ("rose", include_str!("../data/designs/rose.json")),
-    ("eps-ClosedEkcurveKTM1", include_str!("../data/designs/eps-ClosedEkcurveKTM1.json")),
-    ("eps-EkcurvePoints_20220524", include_str!("../data/designs/eps-EkcurvePoints_20220524.json")),
-    ("eps-OpenEkcurveKTM2", include_str!("../data/designs/eps-OpenEkcurveKTM2.json")),
-    ("eps-OpenEkcurveKTM3", include_str!("../data/designs/eps-OpenEkcurveKTM3.json")),
-    ("eps-dolphinpts", include_str!("../data/designs/eps-dolphinpts.json")),
+    (
+        "eps-ClosedEkcurveKTM1",
+        include_str!("../data/designs/eps-ClosedEkcurveKTM1.json"),
+    ),
+    (
+        "eps-EkcurvePoints_20220524",
+        include_str!("../data/designs/eps-EkcurvePoints_20220524.json"),
+    ),
+    (
+        "eps-OpenEkcurveKTM2",
+        include_str!("../data/designs/eps-OpenEkcurveKTM2.json"),
+    ),
+    (
+        "eps-OpenEkcurveKTM3",
+        include_str!("../data/designs/eps-OpenEkcurveKTM3.json"),
+    ),
+    (
+        "eps-dolphinpts",
+        include_str!("../data/designs/eps-dolphinpts.json"),
+    ),
 ];
 
 /// The JSON text of a built-in drawing by name.
 pub fn builtin_design(name: &str) -> Option<&'static str> {
-    BUILTIN_DESIGNS.iter().find(|(n, _)| *n == name).map(|(_, t)| *t)
+    BUILTIN_DESIGNS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, t)| *t)
 }

@@ -25,3 +25,5 @@ mod design;
 pub use design::{Design, DesignCurve};
 mod designs;
 pub use designs::{builtin_design, BUILTIN_DESIGNS};
+#[cfg(all(feature = "render", feature = "serde"))]
+pub mod gallery;

@@ -51,14 +51,14 @@ impl BandLu {
 
     /// Factor in place. Returns `false` if a pivot is zero or not finite.
     pub(crate) fn factor(&mut self) -> bool {
-        let n = self.n;
+        let (n, kl, w) = (self.n, self.kl, self.w);
         for k in 0..n {
-            let imax = (k + self.kl).min(n - 1);
-            let jmax = (k + self.kl + self.ku).min(n - 1);
+            let imax = (k + kl).min(n - 1);
+            let len = (k + kl + self.ku).min(n - 1) - k + 1;
             let mut p = k;
-            let mut best = self.a[self.idx(k, k)].abs();
+            let mut best = self.a[k * w + kl].abs();
             for i in k + 1..=imax {
-                let v = self.a[self.idx(i, k)].abs();
+                let v = self.a[i * w + kl + k - i].abs();
                 if v > best {
                     best = v;
                     p = i;
@@ -68,22 +68,24 @@ impl BandLu {
                 return false;
             }
             self.piv[k] = p;
+            // Row k's columns k.. start at offset kl; row i's at kl + k - i.
+            let rk = k * w + kl;
             if p != k {
-                for j in k..=jmax {
-                    let (ik, ip) = (self.idx(k, j), self.idx(p, j));
-                    self.a.swap(ik, ip);
+                let rp = p * w + kl + k - p;
+                for d in 0..len {
+                    self.a.swap(rk + d, rp + d);
                 }
             }
-            let inv = 1.0 / self.a[self.idx(k, k)];
-            let rk = self.idx(k, k);
+            let inv = 1.0 / self.a[rk];
             for i in k + 1..=imax {
-                let ik = self.idx(i, k);
-                let f = self.a[ik] * inv;
-                self.a[ik] = f;
+                let ri = i * w + kl + k - i;
+                let f = self.a[ri] * inv;
+                self.a[ri] = f;
                 if f != 0.0 {
-                    let ri = ik;
-                    for d in 1..=jmax - k {
-                        self.a[ri + d] -= f * self.a[rk + d];
+                    let (head, tail) = self.a.split_at_mut(ri);
+                    let pivot_row = &head[rk + 1..rk + len];
+                    for (x, y) in tail[1..len].iter_mut().zip(pivot_row) {
+                        *x -= f * y;
                     }
                 }
             }
@@ -93,7 +95,7 @@ impl BandLu {
 
     /// Solve `A x = b` in place with the factors from [`BandLu::factor`].
     pub(crate) fn solve(&self, b: &mut [f64]) {
-        let n = self.n;
+        let (n, kl, w) = (self.n, self.kl, self.w);
         for k in 0..n {
             let p = self.piv[k];
             if p != k {
@@ -101,18 +103,18 @@ impl BandLu {
             }
             let bk = b[k];
             if bk != 0.0 {
-                for i in k + 1..=(k + self.kl).min(n - 1) {
-                    b[i] -= self.a[self.idx(i, k)] * bk;
+                let imax = (k + kl).min(n - 1);
+                for (i, bi) in b.iter_mut().enumerate().take(imax + 1).skip(k + 1) {
+                    *bi -= self.a[i * w + kl + k - i] * bk;
                 }
             }
         }
         for k in (0..n).rev() {
-            let rk = self.idx(k, k);
-            let mut s = b[k];
-            for j in k + 1..=(k + self.kl + self.ku).min(n - 1) {
-                s -= self.a[rk + (j - k)] * b[j];
-            }
-            b[k] = s / self.a[rk];
+            let rk = k * w + kl;
+            let len = (k + kl + self.ku).min(n - 1) - k + 1;
+            let row = &self.a[rk + 1..rk + len];
+            let s: f64 = row.iter().zip(&b[k + 1..k + len]).map(|(a, x)| a * x).sum();
+            b[k] = (b[k] - s) / self.a[rk];
         }
     }
 }

@@ -27,21 +27,26 @@
 use crate::basis::{CubicEk, SegmentBasis, Stationarity};
 use crate::linalg::{solve_tridiagonal, BandLu, BorderedLu};
 
-/// Regularization of the squared doubled triangle area (Gram determinant), in normalized
-/// coordinates (drawing size 1): keeps `√T` differentiable for straight stretches while far
-/// below any real area (a triangle with sides 1e-10 has `g ≈ 1e-40`).
+/// Regularization of the squared doubled triangle area, in normalized coordinates (drawing
+/// size 1): keeps the area differentiable for straight stretches while far below any real
+/// area (a triangle with sides 1e-10 has a squared doubled area ≈ 1e-40).
 const EPS_GRAM: f64 = 1e-60;
+/// Rounding floor of the dimensionless (G2 and peak) residuals times the local segment
+/// length, in normalized coordinates: 64 ulps of a unit coordinate.
+const ROUNDING_FLOOR: f64 = 64.0 * f64::EPSILON;
 /// Bounds for λ during the line search (it must stay strictly inside (0, 1)).
 const LAMBDA_MIN: f64 = 1e-12;
-/// Iterations of the classic loop used to start Newton from a cold start.
+/// Iterations of the classic loop used to start Newton from a cold start, one attempt each.
+const CLASSIC_STARTS: [usize; 3] = [3, 1, 12];
+/// Classic iterations that start the first solve of a continuation.
 const CLASSIC_START: usize = 3;
-/// The second attempt starts Newton after this many classic iterations.
-const CLASSIC_START_2: usize = 1;
+/// Smallest continuation step in the homotopy parameter before an attempt is given up.
+const MIN_STEP: f64 = 1e-6;
 /// Iteration budget of each direct attempt before the next strategy is tried.
 const ATTEMPT_BUDGET: usize = 30;
-/// The shape parameter where the solver converges most reliably, the start of the
-/// continuation fallback (measured on the drawings of the εκ paper).
-const A_HOME: f64 = 0.85;
+/// Shape parameters where the solver converges most reliably (measured on the drawings of
+/// the εκ paper), the starts of the continuation fallbacks, tried in this order.
+const A_HOMES: [f64; 3] = [0.85, 0.75, 0.95];
 /// Newton budget of one continuation step.
 const STEP_BUDGET: usize = 16;
 /// Iteration cap of the 1-D root solve for `t` in the classic loop.
@@ -50,6 +55,12 @@ const ROOT_ITERATIONS: usize = 60;
 #[inline]
 fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
     core::array::from_fn(|k| a[k] - b[k])
+}
+
+#[inline]
+fn dist<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
+    let d = sub(a, b);
+    dot(d, d).sqrt()
 }
 
 #[inline]
@@ -62,19 +73,49 @@ fn lerp<const D: usize>(a: [f64; D], b: [f64; D], t: f64) -> [f64; D] {
     core::array::from_fn(|k| a[k] + t * (b[k] - a[k]))
 }
 
-/// Half the area of the parallelogram spanned by `a - b` and `c - b` (the triangle area),
-/// regularized, with its gradient with respect to `a` and `c` (that for `b` is minus their sum).
+/// The area of the triangle `a b c`, regularized, with its gradient with respect to `a` and
+/// `c` (that for `b` is minus their sum). Computed from the cross product of `a - b` and
+/// `c - b` (scalar in 2D, vector in 3D): its relative rounding error grows like `ε/θ` for a
+/// thin triangle of angle `θ`, where the Gram determinant `|u|²|v|² - (u·v)²` would give
+/// `ε/θ²`.
 #[inline]
 fn triangle<const D: usize>(a: [f64; D], b: [f64; D], c: [f64; D]) -> (f64, [f64; D], [f64; D]) {
     let u = sub(a, b);
     let v = sub(c, b);
-    let (uu, vv, uv) = (dot(u, u), dot(v, v), dot(u, v));
-    let g = (uu * vv - uv * uv).max(0.0) + EPS_GRAM;
-    let sq = g.sqrt();
-    let dg = 1.0 / (4.0 * sq);
-    let ga = core::array::from_fn(|k| dg * 2.0 * (vv * u[k] - uv * v[k]));
-    let gc = core::array::from_fn(|k| dg * 2.0 * (uu * v[k] - uv * u[k]));
-    (0.5 * sq, ga, gc)
+    // x = u × v as up to three components; ∂|x|²/∂u = 2 v × x, ∂|x|²/∂v = 2 x × u.
+    let (x, gu, gv): ([f64; 3], [f64; 3], [f64; 3]) = if D == 2 {
+        let z = u[0] * v[1] - u[1] * v[0];
+        (
+            [0.0, 0.0, z],
+            [v[1] * z, -v[0] * z, 0.0],
+            [-u[1] * z, u[0] * z, 0.0],
+        )
+    } else {
+        let (u3, v3) = (
+            [u[0], u[1], u.get(2).copied().unwrap_or(0.0)],
+            [v[0], v[1], v.get(2).copied().unwrap_or(0.0)],
+        );
+        let x = cross3(u3, v3);
+        (x, cross3(v3, x), cross3(x, u3))
+    };
+    let g = x[0] * x[0] + x[1] * x[1] + x[2] * x[2] + EPS_GRAM;
+    let t2 = g.sqrt(); // twice the area
+                       // dT = d|x|² / (4 · 2T)
+    let f = 1.0 / (2.0 * t2);
+    (
+        0.5 * t2,
+        core::array::from_fn(|k| f * gu[k]),
+        core::array::from_fn(|k| f * gv[k]),
+    )
+}
+
+#[inline]
+fn cross3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 /// The data of one solve: targets, shapes and topology, in normalized coordinates.
@@ -131,7 +172,9 @@ struct Linear {
 impl Linear {
     fn reset(&mut self, closed: bool, n: usize, b: usize) {
         self.closed = closed;
-        let (kl, ku) = (2 * b - 1, 3 * b - 1);
+        // Block row j touches block columns j-1 ..= j+2, but only the G2 row (row D of the
+        // block) reaches block j+2, and only its c part: ku = 2B - 1, kl = 2B - 1.
+        let (kl, ku) = (2 * b - 1, 2 * b - 1);
         if closed {
             self.bord.reset((n - 2) * b, 2 * b, kl, ku);
         } else {
@@ -179,6 +222,9 @@ pub(crate) struct Workspace<const D: usize, const B: usize> {
     pub state: State<D>,
     trial: State<D>,
     res: Vec<[f64; B]>,
+    /// The residuals measured by the convergence test (`res`, with the G2 row replaced by
+    /// the relative |κ| mismatch).
+    check: Vec<[f64; B]>,
     scale: Vec<[f64; 2]>,
     step: Vec<f64>,
     lin: Linear,
@@ -220,6 +266,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         debug_assert_eq!(self.n(), n);
         self.trial.clone_from(&self.state);
         self.res.resize(n, [0.0; B]);
+        self.check.resize(n, [0.0; B]);
         self.scale.resize(n, [1.0; 2]);
         self.step.resize(n * B, 0.0);
         let mut out = Outcome::default();
@@ -229,7 +276,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         loop {
             self.lin.reset(prob.closed, n, B);
-            let phi = self.assemble(prob, true);
+            let phi = self.assemble(prob, true, set.tolerance);
             out.residual = self.max_residual();
             if out.residual <= set.tolerance {
                 out.converged = true;
@@ -247,9 +294,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
     }
 
-    /// Solve from a cold start, trying in turn: Newton after a few classic iterations, Newton
-    /// after one, and continuation in the shape parameters from [`A_HOME`]. Every attempt
-    /// is capped; the total iteration count is reported.
+    /// Solve from a cold start, trying in turn: Newton after a few classic iterations (3, 1,
+    /// then 12), and continuation in the shape parameters from each of [`A_HOMES`]. Every
+    /// attempt is capped; the total iteration count is reported, and the best state found is
+    /// kept if none converges.
     pub(crate) fn solve_cold(
         &mut self,
         prob: &Problem<D>,
@@ -258,7 +306,12 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     ) -> Outcome {
         let mut total = 0;
         let mut best: Option<(Outcome, State<D>)> = None;
-        for classic in [CLASSIC_START, CLASSIC_START_2] {
+        let mut keep = |ws: &Self, out: Outcome, best: &mut Option<(Outcome, State<D>)>| {
+            if best.as_ref().is_none_or(|b| out.residual < b.0.residual) {
+                *best = Some((out, ws.state.clone()));
+            }
+        };
+        for classic in CLASSIC_STARTS {
             let budget = Settings {
                 max_iterations: ATTEMPT_BUDGET.min(set.max_iterations.saturating_sub(total)),
                 ..*set
@@ -270,29 +323,41 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             if out.converged {
                 return out;
             }
-            if best.as_ref().is_none_or(|b| out.residual < b.0.residual) {
-                best = Some((out, self.state.clone()));
-            }
+            keep(self, out, &mut best);
         }
-        let mut out = self.continuation(prob, set, scratch, total);
-        if !out.converged {
-            if let Some((b, st)) = best {
-                if b.residual < out.residual {
-                    self.state = st;
-                    out.residual = b.residual;
-                }
+        for home in A_HOMES {
+            if total >= set.max_iterations {
+                break;
             }
+            let out = self.continuation(prob, set, scratch, total, home);
+            total = out.iterations;
+            if out.converged {
+                return out;
+            }
+            keep(self, out, &mut best);
         }
-        out
+        match best {
+            Some((mut out, st)) => {
+                self.state = st;
+                out.iterations = total;
+                out
+            }
+            None => Outcome {
+                iterations: total,
+                residual: f64::INFINITY,
+                ..Outcome::default()
+            },
+        }
     }
 
-    /// Continuation from the shape [`A_HOME`] to the target shapes with adaptive steps.
+    /// Continuation from the shape `home` to the target shapes with adaptive steps.
     fn continuation(
         &mut self,
         prob: &Problem<D>,
         set: &Settings,
         scratch: &mut Problem<D>,
         used: usize,
+        home: f64,
     ) -> Outcome {
         let mut total = used;
         let mut out = Outcome::default();
@@ -304,7 +369,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             scratch.basis.extend(
                 prob.basis
                     .iter()
-                    .map(|b| CubicEk::new(b.a() + (1.0 - s) * (A_HOME - b.a()))),
+                    .map(|b| CubicEk::new(b.a() + (1.0 - s) * (home - b.a()))),
             );
         };
         blend(scratch, 0.0);
@@ -322,11 +387,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         let (mut s, mut ds) = (0.0f64, 0.25f64);
         let mut saved = self.state.clone();
-        while s < 1.0 && total < set.max_iterations && ds > 1e-4 {
+        while s < 1.0 && total < set.max_iterations && ds > MIN_STEP {
             let s_try = (s + ds).min(1.0);
             blend(scratch, s_try);
             let step = self.solve(scratch, &budget(total, STEP_BUDGET), 0);
-            total += step.iterations.max(1);
             if step.converged {
                 s = s_try;
                 saved.clone_from(&self.state);
@@ -345,7 +409,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
 
     /// Largest scaled residual component.
     fn max_residual(&self) -> f64 {
-        self.res
+        self.check
             .iter()
             .flat_map(|r| r.iter())
             .fold(0.0f64, |m, &x| {
@@ -467,12 +531,13 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
 
     /// Evaluate the scaled residual of the current state (and, with `jac`, the scaled
     /// Jacobian into the linear system). Returns the merit `½|R|²`.
-    fn assemble(&mut self, prob: &Problem<D>, jac: bool) -> f64 {
+    fn assemble(&mut self, prob: &Problem<D>, jac: bool, tol: f64) -> f64 {
         let n = self.n();
         let mut phi = 0.0;
         for j in 0..n {
             let loc = Self::local(prob, &self.state, j);
             let mut scale = [1.0; 2];
+            let mut g2 = 0.0;
             let r = if jac {
                 let lin = &mut self.lin;
                 let mut sink = |row: usize, col: Var, v: f64| {
@@ -480,11 +545,22 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                         lin.add(j * B + row, c, v);
                     }
                 };
-                Self::eval_block::<true, false>(prob, j, &loc, &mut scale, &mut sink)
+                Self::eval_block::<true, false>(prob, j, &loc, &mut scale, &mut g2, &mut sink)
             } else {
-                Self::block::<false>(prob, j, &loc, &mut scale)
+                let mut ignore = |_: usize, _: Var, _: f64| {};
+                Self::eval_block::<false, false>(prob, j, &loc, &mut scale, &mut g2, &mut ignore)
             };
             self.scale[j] = scale;
+            // The dimensionless rows cannot be resolved below the rounding floor
+            // ~ε / (local size) (coordinates are O(1) after normalization): scale them so
+            // that the tolerance applies above that floor. Interpolation keeps `tolerance`.
+            let local = dist(loc.cm, loc.c0) + dist(loc.c0, loc.c1);
+            let floor = ROUNDING_FLOOR / local.max(f64::MIN_POSITIVE);
+            let soften = (tol / floor).min(1.0);
+            let mut c = r;
+            c[D] = g2 * soften;
+            c[D + 1] *= soften;
+            self.check[j] = c;
             let rs = r;
             for v in rs.iter() {
                 phi += 0.5 * v * v;
@@ -504,7 +580,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         scale: &mut [f64; 2],
     ) -> [f64; B] {
         let mut ignore = |_: usize, _: Var, _: f64| {};
-        Self::eval_block::<false, FROZEN>(prob, j, loc, scale, &mut ignore)
+        let mut g2 = 0.0;
+        Self::eval_block::<false, FROZEN>(prob, j, loc, scale, &mut g2, &mut ignore)
     }
 
     /// Scaled residual of block `j`; with `JAC`, also every Jacobian entry `(row, variable,
@@ -516,6 +593,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         j: usize,
         l: &Local<D>,
         scale: &mut [f64; 2],
+        g2: &mut f64,
         sink: &mut impl FnMut(usize, Var, f64),
     ) -> [f64; B] {
         let n = prob.p.len();
@@ -561,6 +639,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         scale[1] = sc_t;
         // G2 joint (trivial for the last block of an open curve: λ_{n-1} = 1).
         let last_open = !prob.closed && j == n - 1;
+        *g2 = 0.0;
         let (x, y, tj, tj1, k0, k1);
         if last_open {
             res[D] = l.l0 - 1.0;
@@ -580,11 +659,14 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             tj1 = triangle(l.c0, l.c1, l.c2);
             x = k0 * om * tj.0;
             y = k1 * l.l1 * tj1.0;
-            res[D] = (1.0 - l.l0).powi(2) * x - l.l0 * l.l0 * y;
+            let (u, v) = ((1.0 - l.l0).powi(2) * x, l.l0 * l.l0 * y);
+            res[D] = u - v;
+            // The convergence test measures (r - 1)/(r + 1) with r = κ_j(1)² / κ_{j+1}(0)²,
+            // the relative |κ| mismatch whatever λ is; Newton's row scale 1/(X + Y)
+            // globalizes better.
+            *g2 = (u - v).abs() / (u + v + 1e-300);
             if !FROZEN {
-                // Scaled, the row is (r - 1)/(r + 1) with r = κ_j(1)² / κ_{j+1}(0)²: the
-                // relative |κ| mismatch at the joint, whatever λ is.
-                scale[0] = 1.0 / ((1.0 - l.l0).powi(2) * x + l.l0 * l.l0 * y + 1e-300);
+                scale[0] = 1.0 / (x + y + 1e-300);
             }
         }
         res[D] *= scale[0];
@@ -887,8 +969,9 @@ mod jacobian_tests {
                     jac[(j * B + row) * nn + c] += v;
                 }
             };
-            let r =
-                Workspace::<D, B>::eval_block::<true, false>(prob, j, &loc, &mut scale, &mut sink);
+            let r = Workspace::<D, B>::eval_block::<true, false>(
+                prob, j, &loc, &mut scale, &mut 0.0, &mut sink,
+            );
             res[j * B..(j + 1) * B].copy_from_slice(&r);
         }
         (jac, res)
@@ -1037,9 +1120,10 @@ mod linear_tests {
         ws.cold_start(&prob);
         ws.classic_iteration(&prob);
         ws.res.resize(n, [0.0; B]);
+        ws.check.resize(n, [0.0; B]);
         ws.scale.resize(n, [1.0; 2]);
         ws.lin.reset(closed, n, B);
-        ws.assemble(&prob, true);
+        ws.assemble(&prob, true, 1e-12);
         let nn = n * B;
         let mut dense = DenseLu::default();
         dense.reset(nn);
@@ -1051,7 +1135,10 @@ mod linear_tests {
                     dense.add(j * B + row, c, v);
                 }
             };
-            Workspace::<D, B>::eval_block::<true, false>(&prob, j, &loc, &mut scale, &mut sink);
+            let mut g2 = 0.0;
+            Workspace::<D, B>::eval_block::<true, false>(
+                &prob, j, &loc, &mut scale, &mut g2, &mut sink,
+            );
         }
         let rhs: Vec<f64> = ws.res.iter().flat_map(|r| r.iter().map(|v| -v)).collect();
         let mut x1 = rhs.clone();

@@ -79,7 +79,7 @@ impl Default for SolveOptions {
     fn default() -> Self {
         SolveOptions {
             tolerance: 1e-12,
-            max_iterations: 500,
+            max_iterations: 1000,
             accept_unconverged: false,
         }
     }
@@ -560,7 +560,10 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                 report,
             });
         }
-        if !closed && collinear(&self.prob.p) && collinear(&[self.prob.ghost[0], self.prob.p[0], self.prob.ghost[1]]) {
+        if !closed
+            && collinear(&self.prob.p)
+            && collinear(&[self.prob.ghost[0], self.prob.p[0], self.prob.ghost[1]])
+        {
             self.straight_solution();
             self.warm = true;
             let report = SolveReport {
@@ -606,11 +609,22 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             st.lam[j] = if j + 1 == n { 1.0 } else { 0.5 };
         }
         for j in 0..n {
-            let prev = if j == 0 { self.prob.ghost[0] } else { self.prob.p[j - 1] };
-            let next = if j + 1 == n { self.prob.ghost[1] } else { self.prob.p[j + 1] };
+            let prev = if j == 0 {
+                self.prob.ghost[0]
+            } else {
+                self.prob.p[j - 1]
+            };
+            let next = if j + 1 == n {
+                self.prob.ghost[1]
+            } else {
+                self.prob.p[j + 1]
+            };
             let lm = if j == 0 { 0.0 } else { 0.5 };
-            let q0: [f64; D] = core::array::from_fn(|k| prev[k] + lm * (self.prob.p[j][k] - prev[k]));
-            let q2: [f64; D] = core::array::from_fn(|k| self.prob.p[j][k] + st.lam[j] * (next[k] - self.prob.p[j][k]));
+            let q0: [f64; D] =
+                core::array::from_fn(|k| prev[k] + lm * (self.prob.p[j][k] - prev[k]));
+            let q2: [f64; D] = core::array::from_fn(|k| {
+                self.prob.p[j][k] + st.lam[j] * (next[k] - self.prob.p[j][k])
+            });
             // Along the line the position is monotone in t: bisect for the parameter of p_j.
             let basis = self.prob.basis[j];
             let p = self.prob.p[j];
@@ -621,7 +635,9 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             for _ in 0..60 {
                 let mid = 0.5 * (lo + hi);
                 let w = crate::basis::SegmentBasis::weights(&basis, mid);
-                let x: [f64; D] = core::array::from_fn(|k| w[0][0] * q0[k] + (1.0 - w[0][0] - w[0][1]) * p[k] + w[0][1] * q2[k]);
+                let x: [f64; D] = core::array::from_fn(|k| {
+                    w[0][0] * q0[k] + (1.0 - w[0][0] - w[0][1]) * p[k] + w[0][1] * q2[k]
+                });
                 if along(x) < target {
                     lo = mid;
                 } else {

@@ -1,1 +1,0 @@
-//! Curvature analysis.

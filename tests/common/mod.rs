@@ -1,0 +1,90 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use kappa::{builtin_design, Design};
+use kurbo::{ParamCurve, ParamCurveDeriv, PathSeg, Point};
+
+/// Every curve with at least three points of the nine drawings of the εκ paper:
+/// `(drawing, index, points, closed)`.
+pub fn paper_curves() -> Vec<(String, usize, Vec<Point>, bool, f64)> {
+    let mut out = Vec::new();
+    for name in [
+        "bear", "bird", "deer", "dinosaur", "elephant", "plane", "pumpkin", "rabbit", "rose",
+    ] {
+        let d = Design::from_json(builtin_design(name).unwrap()).unwrap();
+        let size = d.size();
+        for (i, c) in d.curves.iter().enumerate() {
+            if c.points.len() >= 3 {
+                out.push((name.to_string(), i, c.kurbo_points(), c.is_closed(), size));
+            }
+        }
+    }
+    out
+}
+
+/// First and second derivative of a segment at `t`.
+pub fn derivs(seg: &PathSeg, t: f64) -> (kurbo::Vec2, kurbo::Vec2) {
+    match seg {
+        PathSeg::Line(l) => (l.deriv().eval(t).to_vec2(), kurbo::Vec2::ZERO),
+        PathSeg::Quad(q) => (
+            q.deriv().eval(t).to_vec2(),
+            q.deriv().deriv().eval(t).to_vec2(),
+        ),
+        PathSeg::Cubic(c) => (
+            c.deriv().eval(t).to_vec2(),
+            c.deriv().deriv().eval(t).to_vec2(),
+        ),
+    }
+}
+
+/// Signed curvature, positive for left turns (x′y″ − y′x″)/|r′|³.
+pub fn curvature(seg: &PathSeg, t: f64) -> f64 {
+    let (d1, d2) = derivs(seg, t);
+    d1.cross(d2) / d1.hypot().powi(3)
+}
+
+/// Unit tangent.
+pub fn tangent(seg: &PathSeg, t: f64) -> kurbo::Vec2 {
+    let (d1, _) = derivs(seg, t);
+    d1 / d1.hypot()
+}
+
+/// The parameter of the largest |κ| on a dense grid refined by golden-section search.
+pub fn sampled_peak(seg: &PathSeg) -> (f64, f64) {
+    let n = 2000;
+    let (mut best_t, mut best) = (0.0, -1.0);
+    for i in 0..=n {
+        let t = i as f64 / n as f64;
+        let k = curvature(seg, t).abs();
+        if k > best {
+            best = k;
+            best_t = t;
+        }
+    }
+    let (mut lo, mut hi) = (
+        (best_t - 1.0 / n as f64).max(0.0),
+        (best_t + 1.0 / n as f64).min(1.0),
+    );
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..80 {
+        let a = hi - g * (hi - lo);
+        let b = lo + g * (hi - lo);
+        if curvature(seg, a).abs() > curvature(seg, b).abs() {
+            hi = b;
+        } else {
+            lo = a;
+        }
+    }
+    let t = 0.5 * (lo + hi);
+    (t, curvature(seg, t).abs())
+}
+
+/// Distance between two points.
+pub fn dist(a: Point, b: Point) -> f64 {
+    (a - b).hypot()
+}
+
+/// A segment's start point.
+pub fn start(seg: &PathSeg) -> Point {
+    seg.eval(0.0)
+}

@@ -1,0 +1,581 @@
+//! The properties the papers claim, asserted numerically on every drawing of the εκ paper and
+//! on random point sets: convergence, interpolation at the curvature peak, G1 and equal |κ|
+//! at the joints, end conditions, the κ limit of εκ-curves, and monotone sharpening.
+
+mod common;
+
+use common::*;
+use kappa::{Error, Scheme, Shape, SolveOptions, Solver, Spline};
+use kurbo::{ParamCurve, Point};
+use proptest::prelude::*;
+
+/// Interpolation tolerance relative to the drawing size (acceptance: 1e-9).
+const INTERP: f64 = 1e-9;
+/// Relative |κ| mismatch allowed at joints (acceptance: 1e-9).
+const G2: f64 = 1e-9;
+
+const SCHEMES: [(Scheme, f64); 4] = [
+    (Scheme::Kappa, 2.0 / 3.0),
+    (Scheme::EkCubic, 0.75),
+    (Scheme::EkCubic, 0.85),
+    (Scheme::EkCubic, 0.95),
+];
+
+fn shape_of(scheme: Scheme, a: f64) -> Shape {
+    if scheme == Scheme::Kappa {
+        Shape::Neutral
+    } else {
+        Shape::Global(a)
+    }
+}
+
+/// Check every claimed property of a solved spline; `size` is the drawing size.
+fn check_spline(spline: &Spline, points: &[Point], closed: bool, size: f64, what: &str) {
+    let segs = spline.segments();
+    let path_segs: Vec<_> = segs.iter().map(|s| s.to_path_seg()).collect();
+    let off = if closed { 0 } else { 1 };
+    if !closed && points.len() == 2 {
+        // A straight segment from the first point to the second.
+        assert_eq!(path_segs.len(), 1, "{what}");
+        assert_eq!(path_segs[0].eval(0.0), points[0], "{what}");
+        assert_eq!(path_segs[0].eval(1.0), points[1], "{what}");
+        return;
+    }
+    assert_eq!(
+        segs.len(),
+        if closed {
+            points.len()
+        } else {
+            points.len() - 2
+        },
+        "{what}"
+    );
+    for (j, (seg, ps)) in segs.iter().zip(&path_segs).enumerate() {
+        // Interpolation at the peak parameter.
+        let p = points[j + off];
+        let err = dist(ps.eval(seg.t_max), p);
+        assert!(
+            err <= INTERP * size,
+            "{what} seg {j}: interpolation error {err}"
+        );
+        // The peak of |κ| on the segment is at t_max, unless forced to an end.
+        let (ts, ks) = sampled_peak(ps);
+        let k_at = curvature(ps, seg.t_max).abs();
+        assert!(
+            k_at >= ks * (1.0 - 1e-9),
+            "{what} seg {j}: |κ(t_max={})| = {k_at} below the sampled peak {ks} at {ts}",
+            seg.t_max
+        );
+        if seg.t_max > 1e-6 && seg.t_max < 1.0 - 1e-6 && (ts - seg.t_max).abs() > 1e-6 {
+            // A flat peak: the values must agree to rounding.
+            assert!(
+                (k_at - ks).abs() <= 1e-9 * ks,
+                "{what} seg {j}: peak at {ts}, t_max {}",
+                seg.t_max
+            );
+        }
+    }
+    // Joints: G1 and equal |κ|.
+    let joints = if closed {
+        segs.len()
+    } else {
+        segs.len().saturating_sub(1)
+    };
+    for j in 0..joints {
+        let (a, b) = (&path_segs[j], &path_segs[(j + 1) % segs.len()]);
+        assert_eq!(a.eval(1.0), b.eval(0.0), "{what} joint {j}: gap");
+        let cross = tangent(a, 1.0).cross(tangent(b, 0.0));
+        let dot = tangent(a, 1.0).dot(tangent(b, 0.0));
+        assert!(
+            cross.abs() < 1e-9 && dot > 0.0,
+            "{what} joint {j}: tangent angle {}",
+            cross.asin()
+        );
+        // Curvature in a frame centred at the joint: the control points' own rounding
+        // (ε × coordinate magnitude) is the only error left, and the tolerance never goes
+        // below what they can hold over handles of length ℓ.
+        let at = kurbo::Affine::translate(-a.eval(1.0).to_vec2());
+        let (ka, kb) = (curvature(&(at * *a), 1.0).abs(), curvature(&(at * *b), 0.0).abs());
+        let (sa, sb) = (&segs[j], &segs[(j + 1) % segs.len()]);
+        let handle = dist(sa.q[1], sa.q[2]).min(dist(sb.q[0], sb.q[1]));
+        let mag = sa.q.iter().chain(&sb.q).map(|p| p.x.abs().max(p.y.abs())).fold(size, f64::max);
+        // A thin control triangle (angle θ between its legs) amplifies that by 1/sin θ.
+        let sin = |q: &[Point; 3]| {
+            let (r, s) = (q[1] - q[0], q[2] - q[1]);
+            (r.cross(s).abs() / (r.hypot() * s.hypot())).max(f64::MIN_POSITIVE)
+        };
+        let thin = sin(&sa.q).min(sin(&sb.q));
+        let floor = 1e3 * f64::EPSILON * mag / (handle * thin).max(f64::MIN_POSITIVE);
+        if (ka - kb).abs() > G2.max(floor) * ka.max(kb) {
+            eprintln!("FAILPTS {closed} {:?} {:?}", points.iter().map(|p| (p.x, p.y)).collect::<Vec<_>>(), spline.segments().iter().map(|s| s.a).collect::<Vec<_>>());
+        }
+        assert!(
+            (ka - kb).abs() <= G2.max(floor) * ka.max(kb),
+            "{what} joint {j}: |κ| {ka} vs {kb}"
+        );
+    }
+    // Open curves end at the first and last points.
+    if !closed {
+        assert_eq!(path_segs[0].eval(0.0), points[0], "{what}: start");
+        assert_eq!(
+            path_segs.last().unwrap().eval(1.0),
+            *points.last().unwrap(),
+            "{what}: end"
+        );
+    }
+}
+
+#[test]
+fn all_paper_curves_converge_with_every_scheme() {
+    let curves = paper_curves();
+    assert_eq!(
+        curves.len(),
+        109,
+        "the εκ paper's drawings have 109 curves of ≥ 3 points"
+    );
+    let mut table = String::new();
+    for (scheme, a) in SCHEMES {
+        let mut hist = std::collections::BTreeMap::new();
+        for (name, i, pts, closed, size) in &curves {
+            let what = format!("{name}#{i} {scheme:?} a={a}");
+            let spline = Solver::new()
+                .solve(pts, *closed, scheme, &shape_of(scheme, a))
+                .unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert!(spline.converged(), "{what}");
+            check_spline(&spline, pts, *closed, *size, &what);
+            *hist.entry(spline.iterations()).or_insert(0usize) += 1;
+        }
+        table += &format!("{scheme:?} a={a:.3}: iterations → curves {hist:?}\n");
+    }
+    println!("{table}");
+}
+
+#[test]
+fn ek_cubic_with_a_two_thirds_is_the_kappa_curve() {
+    for (name, i, pts, closed, size) in paper_curves() {
+        let k = Spline::kappa(&pts, closed).unwrap();
+        let e = Spline::ek_cubic(&pts, closed, 2.0 / 3.0).unwrap();
+        for (sk, se) in k.segments().iter().zip(e.segments()) {
+            let (qk, qe) = (sk.to_path_seg(), se.to_path_seg());
+            for t in [0.0, 0.25, 0.5, 0.75, 1.0] {
+                let d = dist(qk.eval(t), qe.eval(t));
+                assert!(d <= 1e-12 * size, "{name}#{i}: {d}");
+            }
+        }
+    }
+}
+
+#[test]
+fn larger_shape_gives_a_sharper_peak() {
+    // seed 000 §3.3: larger a, larger curvature maximum at the point (bear and bird).
+    for (name, i, pts, closed, _) in paper_curves()
+        .into_iter()
+        .filter(|c| c.0 == "bear" || c.0 == "bird")
+    {
+        let mut solver = Solver::new();
+        let mut prev: Option<Vec<f64>> = None;
+        for a in [2.0 / 3.0, 0.75, 0.85, 0.95] {
+            let s = solver
+                .solve(&pts, closed, Scheme::EkCubic, &Shape::Global(a))
+                .unwrap();
+            let peaks: Vec<f64> = s
+                .segments()
+                .iter()
+                .map(|g| curvature(&g.to_path_seg(), g.t_max).abs())
+                .collect();
+            if let Some(p) = &prev {
+                // The drawing as a whole gets sharper: the largest peak grows.
+                let (mx0, mx1) = (
+                    p.iter().cloned().fold(0.0, f64::max),
+                    peaks.iter().cloned().fold(0.0, f64::max),
+                );
+                assert!(mx1 > mx0, "{name}#{i}: max peak {mx0} → {mx1} at a={a}");
+            }
+            prev = Some(peaks);
+        }
+    }
+}
+
+#[test]
+fn raising_one_points_shape_sharpens_that_point() {
+    // Per-point control (seed 000 Fig. 5): raising a_i raises |κ| at p_i.
+    let pts: Vec<Point> = (0..8)
+        .map(|i| {
+            let th = i as f64 * std::f64::consts::TAU / 8.0;
+            let r = if i % 2 == 0 { 100.0 } else { 70.0 };
+            Point::new(r * th.cos(), r * th.sin())
+        })
+        .collect();
+    let mut prev = 0.0;
+    for a in [2.0 / 3.0, 0.7, 0.8, 0.9, 0.95, 0.99] {
+        let mut shapes = vec![2.0 / 3.0; 8];
+        shapes[2] = a;
+        let s = Solver::new()
+            .solve(&pts, true, Scheme::EkCubic, &Shape::PerPoint(shapes))
+            .unwrap();
+        let g = &s.segments()[2];
+        let k = curvature(&g.to_path_seg(), g.t_max).abs();
+        assert!(k > prev, "a={a}: κ {k} not above {prev}");
+        prev = k;
+    }
+}
+
+#[test]
+fn warm_resolve_matches_cold_solve_and_is_cheaper() {
+    let pts: Vec<Point> = (0..50)
+        .map(|i| {
+            let th = i as f64 / 50.0 * std::f64::consts::TAU;
+            let r = 100.0 * (1.0 + 0.3 * (7.0 * th).sin());
+            Point::new(r * th.cos(), r * th.sin())
+        })
+        .collect();
+    for (scheme, a) in SCHEMES {
+        let mut solver = Solver::new();
+        let cold0 = solver
+            .solve(&pts, true, scheme, &shape_of(scheme, a))
+            .unwrap();
+        let mut moved = pts.clone();
+        moved[10] += kurbo::Vec2::new(0.8, -0.5);
+        let warm = solver.resolve(&moved).unwrap();
+        let cold = Solver::new()
+            .solve(&moved, true, scheme, &shape_of(scheme, a))
+            .unwrap();
+        assert!(
+            warm.iterations() < cold.iterations(),
+            "{} vs {}",
+            warm.iterations(),
+            cold.iterations()
+        );
+        assert!(warm.iterations() <= cold0.iterations());
+        for (w, c) in warm.segments().iter().zip(cold.segments()) {
+            for k in 0..3 {
+                assert!(dist(w.q[k], c.q[k]) < 1e-9 * 200.0);
+            }
+        }
+        check_spline(&warm, &moved, true, 260.0, "warm");
+    }
+}
+
+#[test]
+fn shape_slider_resolve_is_warm() {
+    let pts = [
+        Point::new(0.0, 0.0),
+        Point::new(100.0, 10.0),
+        Point::new(120.0, 90.0),
+        Point::new(20.0, 110.0),
+    ];
+    let mut solver = Solver::new();
+    solver
+        .solve(&pts, true, Scheme::EkCubic, &Shape::Global(0.8))
+        .unwrap();
+    let warm = solver
+        .resolve_shapes(Scheme::EkCubic, &Shape::Global(0.82))
+        .unwrap();
+    let cold = Solver::new()
+        .solve(&pts, true, Scheme::EkCubic, &Shape::Global(0.82))
+        .unwrap();
+    assert!(warm.iterations() < cold.iterations());
+    check_spline(&warm, &pts, true, 120.0, "slider");
+}
+
+#[test]
+fn open_curve_ends_and_two_point_segment() {
+    let pts = [
+        Point::new(0.0, 0.0),
+        Point::new(50.0, 40.0),
+        Point::new(100.0, 0.0),
+        Point::new(150.0, 30.0),
+    ];
+    let s = Spline::kappa(&pts, false).unwrap();
+    check_spline(&s, &pts, false, 150.0, "open");
+    let line = Spline::ek_cubic(&pts[..2], false, 0.9).unwrap();
+    assert_eq!(line.segments().len(), 1);
+    let seg = line.segments()[0].to_path_seg();
+    for t in [0.0, 0.3, 0.7, 1.0] {
+        let p = seg.eval(t);
+        assert!((p.y - 0.8 * p.x).abs() < 1e-12, "straight segment");
+    }
+    assert_eq!(seg.eval(0.0), pts[0]);
+    assert_eq!(seg.eval(1.0), pts[1]);
+}
+
+#[test]
+fn bird_beak_open_curve_that_starts_where_it_ends() {
+    let d = kappa::Design::from_json(kappa::builtin_design("bird").unwrap()).unwrap();
+    let c = d
+        .curves
+        .iter()
+        .find(|c| !c.is_closed() && c.points.len() > 10)
+        .unwrap();
+    let pts = c.kurbo_points();
+    assert_eq!(pts[0], *pts.last().unwrap());
+    let s = Spline::kappa(&pts, false).unwrap();
+    check_spline(&s, &pts, false, d.size(), "beak");
+}
+
+#[test]
+fn curves_are_invariant_under_similarity_transforms() {
+    let pts = [
+        Point::new(0.0, 0.0),
+        Point::new(100.0, 10.0),
+        Point::new(120.0, 90.0),
+        Point::new(20.0, 110.0),
+        Point::new(-20.0, 50.0),
+    ];
+    let xf = kurbo::Affine::rotate(0.7)
+        .then_scale(3.5)
+        .then_translate(kurbo::Vec2::new(1e4, -3e3));
+    let moved: Vec<Point> = pts.iter().map(|&p| xf * p).collect();
+    let a = Spline::ek_cubic(&pts, true, 0.8).unwrap();
+    let b = Spline::ek_cubic(&moved, true, 0.8).unwrap();
+    for (sa, sb) in a.segments().iter().zip(b.segments()) {
+        assert!((sa.t_max - sb.t_max).abs() < 1e-9);
+        for k in 0..3 {
+            assert!(dist(xf * sa.q[k], sb.q[k]) < 1e-9 * 420.0);
+        }
+    }
+}
+
+#[test]
+fn bad_input_gets_typed_errors() {
+    let p = |x: f64, y: f64| Point::new(x, y);
+    let tri = [p(0.0, 0.0), p(1.0, 0.0), p(0.0, 1.0)];
+    assert!(matches!(
+        Spline::kappa(&tri[..2], true),
+        Err(Error::TooFewPoints {
+            needed: 3,
+            got: 2,
+            ..
+        })
+    ));
+    assert!(matches!(
+        Spline::kappa(&tri[..1], false),
+        Err(Error::TooFewPoints {
+            needed: 2,
+            got: 1,
+            ..
+        })
+    ));
+    assert!(matches!(
+        Spline::kappa(&[], false),
+        Err(Error::TooFewPoints { .. })
+    ));
+    for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+        let pts = [p(0.0, 0.0), p(bad, 0.0), p(0.0, 1.0)];
+        assert_eq!(
+            Spline::kappa(&pts, true),
+            Err(Error::NonFinitePoint { index: 1 })
+        );
+    }
+    assert_eq!(
+        Spline::kappa(&[p(0.0, 0.0), p(1.0, 0.0), p(1.0, 0.0), p(0.0, 1.0)], true),
+        Err(Error::RepeatedPoint { index: 1, next: 2 })
+    );
+    assert_eq!(
+        Spline::kappa(&[p(0.0, 0.0), p(1.0, 0.0), p(0.0, 1.0), p(0.0, 0.0)], true),
+        Err(Error::RepeatedPoint { index: 3, next: 0 })
+    );
+    assert_eq!(
+        Spline::kappa(&[p(0.0, 0.0), p(1.0, 1.0), p(3.0, 3.0), p(2.0, 2.0)], true),
+        Err(Error::Collinear)
+    );
+    for a in [0.5, 1.0, 1.5, f64::NAN] {
+        assert!(
+            matches!(
+                Spline::ek_cubic(&tri, true, a),
+                Err(Error::ShapeOutOfRange { .. })
+            ),
+            "a={a}"
+        );
+    }
+    assert!(matches!(
+        Solver::new().solve(&tri, true, Scheme::EkCubic, &Shape::PerPoint(vec![0.8; 2])),
+        Err(Error::ShapeCount {
+            expected: 3,
+            got: 2
+        })
+    ));
+    assert!(matches!(
+        Solver::new().solve(&tri, true, Scheme::Kappa, &Shape::Global(0.8)),
+        Err(Error::InvalidOption(_))
+    ));
+    let opts = SolveOptions {
+        tolerance: -1.0,
+        ..Default::default()
+    };
+    assert!(matches!(
+        Solver::with_options(opts).solve(&tri, true, Scheme::Kappa, &Shape::Neutral),
+        Err(Error::InvalidOption(_))
+    ));
+}
+
+#[test]
+fn open_collinear_points_give_a_straight_curve() {
+    let pts: Vec<Point> = (0..6)
+        .map(|i| Point::new(i as f64 * 10.0, i as f64 * 5.0))
+        .collect();
+    let s = Spline::kappa(&pts, false).unwrap();
+    for seg in s.segments() {
+        for t in [0.0, 0.5, 1.0] {
+            let q = seg.eval(t);
+            assert!((q.y - 0.5 * q.x).abs() < 1e-9 * 50.0);
+        }
+    }
+}
+
+#[test]
+fn iteration_cap_is_reported() {
+    let pts: Vec<Point> = (0..12)
+        .map(|i| {
+            let th = i as f64 * std::f64::consts::TAU / 12.0;
+            let r = if i % 2 == 0 { 100.0 } else { 30.0 };
+            Point::new(r * th.cos(), r * th.sin())
+        })
+        .collect();
+    let opts = SolveOptions {
+        max_iterations: 2,
+        ..Default::default()
+    };
+    match Solver::with_options(opts).solve(&pts, true, Scheme::Kappa, &Shape::Neutral) {
+        Err(Error::NotConverged {
+            iterations,
+            residual,
+        }) => {
+            assert!(iterations <= 2);
+            assert!(residual > 1e-12 && residual.is_finite());
+        }
+        other => panic!("expected NotConverged, got {other:?}"),
+    }
+    let opts = SolveOptions {
+        max_iterations: 2,
+        accept_unconverged: true,
+        ..Default::default()
+    };
+    let s = Solver::with_options(opts)
+        .solve(&pts, true, Scheme::Kappa, &Shape::Neutral)
+        .unwrap();
+    assert!(!s.converged());
+    for seg in s.segments() {
+        for q in seg.q {
+            assert!(q.is_finite());
+        }
+    }
+}
+
+/// Options that return unconverged curves too, so that tests can tell the two apart.
+const LENIENT: SolveOptions = SolveOptions {
+    tolerance: 1e-12,
+    max_iterations: 1000,
+    accept_unconverged: true,
+};
+
+/// Random star-shaped closed polygons: sorted angles, radii in [0.35, 1] × scale.
+fn star(n: usize) -> impl Strategy<Value = Vec<Point>> {
+    (
+        prop::collection::vec((0.0f64..1.0, 0.35f64..1.0), n),
+        1e-3f64..1e4,
+        -10.0f64..10.0,
+    )
+        .prop_map(|(raw, scale, shift)| {
+            // Offsets proportional to the size: a tiny drawing far from the origin cannot
+            // hold 1e-9 relative accuracy in its coordinates at all.
+            let shift = shift * scale;
+            let mut v = raw;
+            v.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let n = v.len();
+            v.iter()
+                .enumerate()
+                .map(|(i, &(jitter, r))| {
+                    let th = (i as f64 + 0.6 * jitter) / n as f64 * std::f64::consts::TAU;
+                    Point::new(shift + scale * r * th.cos(), -shift + scale * r * th.sin())
+                })
+                .collect()
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_closed_curves_interpolate_at_their_peaks(
+        pts in (3usize..24).prop_flat_map(star),
+        scheme_i in 0usize..4,
+    ) {
+        let (scheme, a) = SCHEMES[scheme_i];
+        let size = kurbo::Rect::from_points(pts[0], pts[0]);
+        let size = pts.iter().fold(size, |r, &p| r.union_pt(p));
+        let size = size.width().max(size.height());
+        let s = Solver::with_options(LENIENT).solve(&pts, true, scheme, &shape_of(scheme, a)).unwrap();
+        prop_assume!(s.converged(), "convergence rates are measured by random_inputs_convergence_rate");
+        check_spline(&s, &pts, true, size, "random closed");
+    }
+
+    #[test]
+    fn random_open_curves_interpolate_at_their_peaks(
+        pts in (4usize..20).prop_flat_map(star),
+        scheme_i in 0usize..4,
+    ) {
+        // An open curve through all but the last point of a star polygon.
+        let pts = &pts[..pts.len() - 1];
+        let (scheme, a) = SCHEMES[scheme_i];
+        let r = pts.iter().fold(kurbo::Rect::from_points(pts[0], pts[0]), |r, &p| r.union_pt(p));
+        let s = Solver::with_options(LENIENT).solve(pts, false, scheme, &shape_of(scheme, a)).unwrap();
+        prop_assume!(s.converged(), "convergence rates are measured by random_inputs_convergence_rate");
+        check_spline(&s, pts, false, r.width().max(r.height()), "random open");
+    }
+}
+
+/// A deterministic pseudo-random generator for the convergence-rate test.
+struct Lcg(u64);
+
+impl Lcg {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+#[test]
+fn random_inputs_convergence_rate() {
+    // 2000 random star polygons per scheme (3–24 points, radii in [0.35, 1]), closed, and
+    // open (the same polygon without its last point). Every converged curve must have all
+    // the properties; every other one must say so; and the rate must stay high.
+    let mut rng = Lcg(2026);
+    let mut table = String::new();
+    for (scheme, a) in SCHEMES {
+        for closed in [true, false] {
+            let (mut ok, mut total) = (0usize, 0usize);
+            for _ in 0..2000 {
+                let n = 3 + (rng.next() * 22.0) as usize;
+                let mut raw: Vec<(f64, f64)> = (0..n).map(|_| (rng.next(), 0.35 + 0.65 * rng.next())).collect();
+                raw.sort_by(|x, y| x.0.total_cmp(&y.0));
+                let mut pts: Vec<Point> = raw
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &(j, r))| {
+                        let th = (i as f64 + 0.6 * j) / n as f64 * std::f64::consts::TAU;
+                        Point::new(100.0 * r * th.cos(), 100.0 * r * th.sin())
+                    })
+                    .collect();
+                if !closed {
+                    pts.pop();
+                }
+                total += 1;
+                match Solver::new().solve(&pts, closed, scheme, &shape_of(scheme, a)) {
+                    Ok(s) => {
+                        assert!(s.converged());
+                        check_spline(&s, &pts, closed, 200.0, "random");
+                        ok += 1;
+                    }
+                    Err(Error::NotConverged { residual, .. }) => assert!(residual > 1e-12),
+                    Err(Error::RepeatedPoint { .. }) | Err(Error::Collinear) => total -= 1,
+                    Err(e) => panic!("unexpected error {e}"),
+                }
+            }
+            let rate = ok as f64 / total as f64;
+            table += &format!("{scheme:?} a={a:.3} closed={closed}: {ok}/{total} converged\n");
+            assert!(rate >= 0.97, "{scheme:?} a={a} closed={closed}: only {ok}/{total} converged");
+        }
+    }
+    println!("{table}");
+}
