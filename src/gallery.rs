@@ -17,9 +17,9 @@ pub const PAPER_VARIANTS: [(Scheme, f64); 4] = [
 ];
 
 /// Teeth of the curvature comb reach this fraction of the drawing size at the largest |κ|.
-const COMB_FRACTION: f64 = 0.06;
+const COMB_FRACTION: f64 = 0.15;
 /// Comb samples per segment.
-const COMB_SAMPLES: usize = 24;
+const COMB_SAMPLES: usize = 16;
 /// The largest |κ| used to scale the comb, relative to 1 / drawing size: keeps a near-cusp
 /// from flattening every other tooth.
 const COMB_KAPPA_CAP: f64 = 60.0;
@@ -62,38 +62,50 @@ pub fn solve_design(
     Ok(out)
 }
 
+/// Comb scales (tooth length per unit |κ|), one per curve: the largest |κ| of each curve gets
+/// a tooth of [`COMB_FRACTION`] of that curve's size, so small contours (an eye) do not
+/// flatten the comb of large ones.
+pub fn comb_scales(curves: &[(BezPath, Vec<Point>)]) -> Vec<f64> {
+    curves
+        .iter()
+        .map(|(path, _)| {
+            let size = kurbo::Shape::bounding_box(path).size();
+            let size = size.width.max(size.height).max(f64::MIN_POSITIVE);
+            let kmax = path_max_curvature(path).value.min(COMB_KAPPA_CAP / size);
+            if kmax > 0.0 && kmax.is_finite() {
+                COMB_FRACTION * size / kmax
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
 /// A scene of one drawing solved with one scheme: curves, combs and input points, in a
-/// `width × height` pixel panel (y down, as the drawings are).
+/// `width × height` pixel panel (y down, as the drawings are). `combs` are the tooth lengths
+/// per unit |κ|, one per curve (`None`: from this solution, see [`comb_scales`]).
 pub fn design_scene(
     design: &Design,
     scheme: Scheme,
     a: f64,
     width: u32,
     height: u32,
+    combs: Option<&[f64]>,
 ) -> Result<Scene, GalleryError> {
     let curves = solve_design(design, scheme, a)?;
-    let size = design.size().max(f64::MIN_POSITIVE);
-    let mut kmax: f64 = 0.0;
-    for (path, _) in &curves {
-        kmax = kmax.max(path_max_curvature(path).value);
-    }
-    let kmax = kmax.min(COMB_KAPPA_CAP / size);
-    let scale = if kmax > 0.0 {
-        COMB_FRACTION * size / kmax
-    } else {
-        0.0
+    let own;
+    let scales = match combs {
+        Some(c) if c.len() == curves.len() => c,
+        _ => {
+            own = comb_scales(&curves);
+            &own[..]
+        }
     };
-    let mut bounds: Option<Rect> = None;
-    for (path, _) in &curves {
-        let b = kurbo::Shape::bounding_box(path);
-        bounds = Some(bounds.map_or(b, |r| r.union(b)));
-    }
     let mut scene = Scene::new().with_size(width, height);
-    if let Some(b) = bounds {
-        let pad = COMB_FRACTION * size;
-        scene = scene.with_view_box(b.inflate(pad, pad));
+    if let Some(view) = view_box(design) {
+        scene = scene.with_view_box(view);
     }
-    for (path, _) in &curves {
+    for ((path, _), &scale) in curves.iter().zip(scales) {
         scene = scene.comb(&curvature_comb(path, scale, COMB_SAMPLES));
     }
     for (path, pts) in &curves {
@@ -102,12 +114,27 @@ pub fn design_scene(
     Ok(scene)
 }
 
+/// The view of a drawing: its points' bounding box with a margin, the same for every scheme so
+/// that panels line up.
+fn view_box(design: &Design) -> Option<Rect> {
+    let mut bounds: Option<Rect> = None;
+    for p in design.curves.iter().flat_map(|c| c.points.iter()) {
+        let p = Point::new(p[0], p[1]);
+        bounds = Some(bounds.map_or(Rect::from_points(p, p), |r| r.union_pt(p)));
+    }
+    let pad = 0.1 * design.size();
+    bounds.map(|b| b.inflate(pad, pad))
+}
+
 /// The paper-style figure: the drawing as a κ-curve and as εκ-curves with `a = 0.75, 0.85,
-/// 0.95` side by side, each panel `panel × panel` pixels.
+/// 0.95` side by side, each panel `panel × panel` pixels, with the comb scales of the κ panel
+/// in every panel so that their curvature can be compared.
 pub fn paper_figure(design: &Design, panel: u32) -> Result<Pixmap, GalleryError> {
+    let kappa = solve_design(design, Scheme::Kappa, 2.0 / 3.0)?;
+    let scales = comb_scales(&kappa);
     let mut images = Vec::with_capacity(PAPER_VARIANTS.len());
     for (scheme, a) in PAPER_VARIANTS {
-        images.push(design_scene(design, scheme, a, panel, panel)?.render()?);
+        images.push(design_scene(design, scheme, a, panel, panel, Some(&scales))?.render()?);
     }
     Ok(hstack(&images, 8)?)
 }

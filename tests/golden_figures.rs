@@ -1,0 +1,34 @@
+//! Golden images of the εκ paper's figures (Figs. 6, 8, 9): the bird, the bear and the
+//! elephant as κ-curves beside εκ-curves with a = 0.75, 0.85, 0.95, with curvature combs.
+//!
+//! References live in `tests/golden/`; re-bless with `KAPPA_BLESS=1 cargo test --all-features
+//! --test golden_figures` after an intended change, and look at the new PNGs before committing.
+//! On a mismatch, `target/golden-failures/<name>.png` shows expected | diff | actual.
+
+use kappa::render::golden::{check_golden, Tolerance};
+use kappa::{builtin_design, gallery::paper_figure, Design};
+use std::path::Path;
+
+fn figure(name: &str) {
+    let design = Design::from_json(builtin_design(name).unwrap()).unwrap();
+    let image = paper_figure(&design, 300).unwrap();
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/golden/fig-{name}.png"));
+    if let Err(e) = check_golden(&path, &image, Tolerance::DEFAULT) {
+        panic!("{e}");
+    }
+}
+
+#[test]
+fn golden_bear_fig8() {
+    figure("bear");
+}
+
+#[test]
+fn golden_elephant_fig9() {
+    figure("elephant");
+}
+
+#[test]
+fn golden_bird_fig6() {
+    figure("bird");
+}
