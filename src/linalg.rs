@@ -12,6 +12,8 @@ pub(crate) struct BandLu {
     ku: usize,
     w: usize,
     a: Vec<f64>,
+    /// The multipliers of each column, contiguous (`kl` per column), for the forward pass.
+    l: Vec<f64>,
     piv: Vec<usize>,
 }
 
@@ -24,13 +26,10 @@ impl BandLu {
         self.w = 2 * kl + ku + 1;
         self.a.clear();
         self.a.resize(n * self.w, 0.0);
+        self.l.clear();
+        self.l.resize(n * kl, 0.0);
         self.piv.clear();
         self.piv.resize(n, 0);
-    }
-
-    /// The order of the matrix.
-    pub(crate) fn order(&self) -> usize {
-        self.n
     }
 
     #[inline]
@@ -81,6 +80,7 @@ impl BandLu {
                 let ri = i * w + kl + k - i;
                 let f = self.a[ri] * inv;
                 self.a[ri] = f;
+                self.l[k * kl + (i - k - 1)] = f;
                 if f != 0.0 {
                     let (head, tail) = self.a.split_at_mut(ri);
                     let pivot_row = &head[rk + 1..rk + len];
@@ -103,9 +103,10 @@ impl BandLu {
             }
             let bk = b[k];
             if bk != 0.0 {
-                let imax = (k + kl).min(n - 1);
-                for (i, bi) in b.iter_mut().enumerate().take(imax + 1).skip(k + 1) {
-                    *bi -= self.a[i * w + kl + k - i] * bk;
+                let m = kl.min(n - 1 - k);
+                let col = &self.l[k * kl..k * kl + m];
+                for (bi, li) in b[k + 1..k + 1 + m].iter_mut().zip(col) {
+                    *bi -= li * bk;
                 }
             }
         }

@@ -47,6 +47,10 @@ const ATTEMPT_BUDGET: usize = 30;
 /// Shape parameters where the solver converges most reliably (measured on the drawings of
 /// the εκ paper), the starts of the continuation fallbacks, tried in this order.
 const A_HOMES: [f64; 3] = [0.85, 0.75, 0.95];
+/// Chord steps (warm re-solves) must shrink the merit by this factor or Newton takes over.
+const CHORD_CONTRACTION: f64 = 0.1;
+/// At most this many chord steps per warm re-solve.
+const MAX_CHORD: usize = 12;
 /// Newton budget of one continuation step.
 const STEP_BUDGET: usize = 16;
 /// Iteration cap of the 1-D root solve for `t` in the classic loop.
@@ -228,6 +232,11 @@ pub(crate) struct Workspace<const D: usize, const B: usize> {
     scale: Vec<[f64; 2]>,
     step: Vec<f64>,
     lin: Linear,
+    /// What `lin` holds (for chord steps), and the row scales it was assembled with.
+    lin_state: LinState,
+    fact_scale: Vec<[f64; 2]>,
+    /// The tolerance of the solve in progress.
+    tol_cache: f64,
     tri: [Vec<f64>; 3],
     tri_d: Vec<[f64; D]>,
     scratch: Vec<f64>,
@@ -257,6 +266,113 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         st.t.clear();
         st.t.resize(n, 0.5);
         self.trial.clone_from(&self.state);
+        self.lin_state = LinState::Empty;
+    }
+
+    /// Forget the stored factorization (the problem's structure or shapes changed).
+    pub(crate) fn invalidate(&mut self) {
+        self.lin_state = LinState::Empty;
+    }
+
+    /// Re-solve from the current state after a small change of the targets: chord steps with
+    /// the Jacobian factored by the previous solve while they contract the residual by
+    /// [`CHORD_CONTRACTION`] or better, then Newton.
+    pub(crate) fn solve_warm(&mut self, prob: &Problem<D>, set: &Settings) -> Outcome {
+        let n = prob.p.len();
+        self.tol_cache = set.tolerance;
+        let mut out = Outcome::default();
+        if self.lin_state == LinState::Assembled && self.fact_scale.len() == n {
+            // The Jacobian at the previous solution, assembled by its convergence check.
+            self.lin_state = if self.lin.factor() {
+                LinState::Factored
+            } else {
+                LinState::Empty
+            };
+        }
+        if self.lin_state == LinState::Factored && self.fact_scale.len() == n && self.res.len() == n
+        {
+            let mut phi = self.residual_frozen(prob);
+            for _ in 0..MAX_CHORD {
+                if self.max_residual() <= set.tolerance {
+                    out.converged = true;
+                    out.residual = self.max_residual();
+                    return out;
+                }
+                if out.iterations >= set.max_iterations {
+                    break;
+                }
+                out.iterations += 1;
+                for (j, r) in self.res.iter().enumerate() {
+                    for (k, &v) in r.iter().enumerate() {
+                        self.step[j * B + k] = -v;
+                    }
+                }
+                self.lin.solve(&mut self.step);
+                self.trial.clone_from(&self.state);
+                let mut ok = self.step.iter().all(|x| x.is_finite());
+                if ok {
+                    for j in 0..n {
+                        for k in 0..D {
+                            self.trial.c[j][k] += self.step[j * B + k];
+                        }
+                        self.trial.lam[j] += self.step[j * B + D];
+                        self.trial.t[j] =
+                            (self.trial.t[j] + self.step[j * B + D + 1]).clamp(0.0, 1.0);
+                        ok &= self.trial.lam[j] > 0.0 && self.trial.lam[j] < 1.0 + 1e-15;
+                    }
+                }
+                if !ok {
+                    break;
+                }
+                core::mem::swap(&mut self.state, &mut self.trial);
+                let phi_new = self.residual_frozen(prob);
+                if !(phi_new <= CHORD_CONTRACTION * phi) {
+                    // Not contracting: undo and let Newton take over.
+                    core::mem::swap(&mut self.state, &mut self.trial);
+                    break;
+                }
+                phi = phi_new;
+            }
+        }
+        if self.lin_state == LinState::Factored
+            && self.res.len() == n
+            && self.max_residual() <= set.tolerance
+        {
+            out.converged = true;
+            out.residual = self.max_residual();
+            return out;
+        }
+        let rest = self.solve(
+            prob,
+            &Settings {
+                max_iterations: set.max_iterations.saturating_sub(out.iterations),
+                ..*set
+            },
+            0,
+        );
+        Outcome {
+            iterations: out.iterations + rest.iterations,
+            ..rest
+        }
+    }
+
+    /// The residual (and convergence measures) of the current state with the row scales of
+    /// the stored factorization; returns the merit.
+    fn residual_frozen(&mut self, prob: &Problem<D>) -> f64 {
+        let n = self.n();
+        let mut phi = 0.0;
+        for j in 0..n {
+            let loc = Self::local(prob, &self.state, j);
+            let mut scale = self.fact_scale[j];
+            let mut g2 = 0.0;
+            let mut ignore = |_: usize, _: Var, _: f64| {};
+            let r =
+                Self::eval_block::<false, true>(prob, j, &loc, &mut scale, &mut g2, &mut ignore);
+            phi += r.iter().map(|v| 0.5 * v * v).sum::<f64>();
+            self.res[j] = r;
+            self.check[j] = Self::check_row(r, g2, &loc, self.tol_cache);
+        }
+        phi
     }
 
     /// Solve from the current state (a cold start or a previous solution), after `classic`
@@ -277,6 +393,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         loop {
             self.lin.reset(prob.closed, n, B);
             let phi = self.assemble(prob, true, set.tolerance);
+            self.lin_state = LinState::Assembled;
+            self.fact_scale.clone_from(&self.scale);
             out.residual = self.max_residual();
             if out.residual <= set.tolerance {
                 out.converged = true;
@@ -306,7 +424,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     ) -> Outcome {
         let mut total = 0;
         let mut best: Option<(Outcome, State<D>)> = None;
-        let mut keep = |ws: &Self, out: Outcome, best: &mut Option<(Outcome, State<D>)>| {
+        let keep = |ws: &Self, out: Outcome, best: &mut Option<(Outcome, State<D>)>| {
             if best.as_ref().is_none_or(|b| out.residual < b.0.residual) {
                 *best = Some((out, ws.state.clone()));
             }
@@ -424,8 +542,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// One Newton step with backtracking; `false` if no acceptable step was found.
     fn newton_step(&mut self, prob: &Problem<D>, phi: f64) -> bool {
         if !self.lin.factor() {
+            self.lin_state = LinState::Empty;
             return false;
         }
+        self.lin_state = LinState::Factored;
         let n = self.n();
         for (j, r) in self.res.iter().enumerate() {
             for (k, &v) in r.iter().enumerate() {
@@ -513,6 +633,22 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
     }
 
+    /// The values the convergence test measures for one block: the interpolation residual,
+    /// the relative |κ| mismatch `g2` at the joint and the peak residual. The dimensionless
+    /// rows cannot be resolved below the rounding floor ~ε / (local size) (coordinates are
+    /// O(1) after normalization), so they are scaled for the tolerance to apply above that
+    /// floor; interpolation keeps the tolerance as it is.
+    #[inline]
+    fn check_row(r: [f64; B], g2: f64, loc: &Local<D>, tol: f64) -> [f64; B] {
+        let local = dist(loc.cm, loc.c0) + dist(loc.c0, loc.c1);
+        let floor = ROUNDING_FLOOR / local.max(f64::MIN_POSITIVE);
+        let soften = (tol / floor).min(1.0);
+        let mut c = r;
+        c[D] = g2 * soften;
+        c[D + 1] *= soften;
+        c
+    }
+
     /// Merit `½|R|²` of the trial state, with the row scales of the current state.
     fn trial_merit(&self, prob: &Problem<D>) -> f64 {
         let mut phi = 0.0;
@@ -551,16 +687,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 Self::eval_block::<false, false>(prob, j, &loc, &mut scale, &mut g2, &mut ignore)
             };
             self.scale[j] = scale;
-            // The dimensionless rows cannot be resolved below the rounding floor
-            // ~ε / (local size) (coordinates are O(1) after normalization): scale them so
-            // that the tolerance applies above that floor. Interpolation keeps `tolerance`.
-            let local = dist(loc.cm, loc.c0) + dist(loc.c0, loc.c1);
-            let floor = ROUNDING_FLOOR / local.max(f64::MIN_POSITIVE);
-            let soften = (tol / floor).min(1.0);
-            let mut c = r;
-            c[D] = g2 * soften;
-            c[D + 1] *= soften;
-            self.check[j] = c;
+            self.check[j] = Self::check_row(r, g2, &loc, tol);
             let rs = r;
             for v in rs.iter() {
                 phi += 0.5 * v * v;
@@ -791,6 +918,18 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             self.state.c.copy_from_slice(&self.tri_d);
         }
     }
+}
+
+/// What the linear system holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+enum LinState {
+    /// Nothing usable.
+    #[default]
+    Empty,
+    /// The Jacobian of the current state, not yet factored.
+    Assembled,
+    /// The factors of a Jacobian of this problem's structure.
+    Factored,
 }
 
 /// Which variable of the stencil of block `j` a Jacobian entry belongs to.

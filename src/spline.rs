@@ -449,6 +449,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         self.prob
             .basis
             .extend(shapes[range].iter().map(|&a| CubicEk::new(a)));
+        self.ws.invalidate();
         self.run()
     }
 
@@ -577,7 +578,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             max_iterations: self.options.max_iterations,
         };
         let outcome = if self.warm {
-            let warm = self.ws.solve(&self.prob, &settings, 0);
+            let warm = self.ws.solve_warm(&self.prob, &settings);
             if warm.converged {
                 warm
             } else {
