@@ -95,10 +95,17 @@ fn check_spline(spline: &Spline, points: &[Point], closed: bool, size: f64, what
         // (ε × coordinate magnitude) is the only error left, and the tolerance never goes
         // below what they can hold over handles of length ℓ.
         let at = kurbo::Affine::translate(-a.eval(1.0).to_vec2());
-        let (ka, kb) = (curvature(&(at * *a), 1.0).abs(), curvature(&(at * *b), 0.0).abs());
+        let (ka, kb) = (
+            curvature(&(at * *a), 1.0).abs(),
+            curvature(&(at * *b), 0.0).abs(),
+        );
         let (sa, sb) = (&segs[j], &segs[(j + 1) % segs.len()]);
         let handle = dist(sa.q[1], sa.q[2]).min(dist(sb.q[0], sb.q[1]));
-        let mag = sa.q.iter().chain(&sb.q).map(|p| p.x.abs().max(p.y.abs())).fold(size, f64::max);
+        let mag =
+            sa.q.iter()
+                .chain(&sb.q)
+                .map(|p| p.x.abs().max(p.y.abs()))
+                .fold(size, f64::max);
         // A thin control triangle (angle θ between its legs) amplifies that by 1/sin θ.
         let sin = |q: &[Point; 3]| {
             let (r, s) = (q[1] - q[0], q[2] - q[1]);
@@ -107,7 +114,11 @@ fn check_spline(spline: &Spline, points: &[Point], closed: bool, size: f64, what
         let thin = sin(&sa.q).min(sin(&sb.q));
         let floor = 1e3 * f64::EPSILON * mag / (handle * thin).max(f64::MIN_POSITIVE);
         if (ka - kb).abs() > G2.max(floor) * ka.max(kb) {
-            eprintln!("FAILPTS {closed} {:?} {:?}", points.iter().map(|p| (p.x, p.y)).collect::<Vec<_>>(), spline.segments().iter().map(|s| s.a).collect::<Vec<_>>());
+            eprintln!(
+                "FAILPTS {closed} {:?} {:?}",
+                points.iter().map(|p| (p.x, p.y)).collect::<Vec<_>>(),
+                spline.segments().iter().map(|s| s.a).collect::<Vec<_>>()
+            );
         }
         assert!(
             (ka - kb).abs() <= G2.max(floor) * ka.max(kb),
@@ -530,7 +541,10 @@ struct Lcg(u64);
 
 impl Lcg {
     fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
         (self.0 >> 11) as f64 / (1u64 << 53) as f64
     }
 }
@@ -547,7 +561,9 @@ fn random_inputs_convergence_rate() {
             let (mut ok, mut total) = (0usize, 0usize);
             for _ in 0..2000 {
                 let n = 3 + (rng.next() * 22.0) as usize;
-                let mut raw: Vec<(f64, f64)> = (0..n).map(|_| (rng.next(), 0.35 + 0.65 * rng.next())).collect();
+                let mut raw: Vec<(f64, f64)> = (0..n)
+                    .map(|_| (rng.next(), 0.35 + 0.65 * rng.next()))
+                    .collect();
                 raw.sort_by(|x, y| x.0.total_cmp(&y.0));
                 let mut pts: Vec<Point> = raw
                     .iter()
@@ -574,7 +590,10 @@ fn random_inputs_convergence_rate() {
             }
             let rate = ok as f64 / total as f64;
             table += &format!("{scheme:?} a={a:.3} closed={closed}: {ok}/{total} converged\n");
-            assert!(rate >= 0.97, "{scheme:?} a={a} closed={closed}: only {ok}/{total} converged");
+            assert!(
+                rate >= 0.97,
+                "{scheme:?} a={a} closed={closed}: only {ok}/{total} converged"
+            );
         }
     }
     println!("{table}");
