@@ -113,13 +113,6 @@ fn check_spline(spline: &Spline, points: &[Point], closed: bool, size: f64, what
         };
         let thin = sin(&sa.q).min(sin(&sb.q));
         let floor = 1e3 * f64::EPSILON * mag / (handle * thin).max(f64::MIN_POSITIVE);
-        if (ka - kb).abs() > G2.max(floor) * ka.max(kb) {
-            eprintln!(
-                "FAILPTS {closed} {:?} {:?}",
-                points.iter().map(|p| (p.x, p.y)).collect::<Vec<_>>(),
-                spline.segments().iter().map(|s| s.a).collect::<Vec<_>>()
-            );
-        }
         assert!(
             (ka - kb).abs() <= G2.max(floor) * ka.max(kb),
             "{what} joint {j}: |κ| {ka} vs {kb}"
