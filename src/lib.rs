@@ -1,29 +1,99 @@
 //! kappa: curves whose curvature is under the designer's control.
+//!
+//! A κ-curve passes through the points you give it, and its curvature peaks exactly at
+//! those points; an εκ-curve adds a shape parameter `a` per point that sharpens or softens
+//! each peak. kappa computes both, converging to 1e-12 of the drawing size where the
+//! published local/global loop oscillates, and hands the result to the
+//! [kurbo](https://docs.rs/kurbo) ecosystem as exact Bézier paths.
+//!
+//! ```
+//! use kappa::{Scheme, Shape, Solver, Spline};
+//! use kurbo::{ParamCurve, Point};
+//!
+//! let points = [
+//!     Point::new(0.0, 0.0),
+//!     Point::new(100.0, 10.0),
+//!     Point::new(120.0, 90.0),
+//!     Point::new(20.0, 110.0),
+//! ];
+//! // A closed κ-curve: one quadratic segment per point, peaking at the point.
+//! let kappa = Spline::kappa(&points, true)?;
+//! for (seg, p) in kappa.segments().iter().zip(&points) {
+//!     assert!((seg.eval(seg.t_max) - *p).hypot() < 1e-9);
+//! }
+//! // A sharper εκ-curve (cubic segments), as an exact kurbo path.
+//! let sharp = Spline::ek_cubic(&points, true, 0.9)?;
+//! let path: kurbo::BezPath = sharp.to_bezpath();
+//! assert_eq!(path.segments().count(), 4);
+//!
+//! // Interactive editing: keep the solver and re-solve after a point moves.
+//! let mut solver = Solver::new();
+//! solver.solve(&points, true, Scheme::EkCubic, &Shape::Global(0.8))?;
+//! let mut moved = points;
+//! moved[1].x += 2.0;
+//! let again = solver.resolve(&moved)?;
+//! assert!(again.converged());
+//! # Ok::<(), kappa::Error>(())
+//! ```
+//!
+//! # Curvature sign
+//!
+//! Signed curvature in this crate is the papers' `κ = (x′y″ − y′x″) / |r′|³`: **positive for
+//! left (counter-clockwise in y-up) turns**. kurbo's `ParamCurveCurvature::curvature` has the
+//! opposite sign; use [`analysis::CurvatureAnalysis`] for ours. In pixel coordinates (y
+//! down) a left turn in the y-up sense looks like a clockwise turn on screen.
+//!
+//! # What is where
+//!
+//! - [`Spline`], [`Solver`]: κ-curves ([`Scheme::Kappa`]) and cubic εκ-curves
+//!   ([`Scheme::EkCubic`]), open and closed; [`Solver3`] for 3D points.
+//! - [`analysis`]: curvature of Bézier segments of degree 1–4 in 2D and 3D, curvature
+//!   extrema, maxima of paths, continuity at joints, curvature combs.
+//! - `render` (feature `render`): deterministic SVG/PNG pictures and golden-image comparison.
+//! - `gallery` (features `render` + `serde`): the paper-style figures.
+//! - [`BUILTIN_DESIGNS`]: the drawings of the εκ-curve paper, compiled in.
+//!
+//! # Method
+//!
+//! The solver treats the middle control point, joint ratio and peak parameter of every
+//! segment as unknowns of one nonlinear system (interpolation, G2 at the joints, curvature
+//! peak) and solves it by Newton's method with a line search, started by a few iterations of
+//! the classic local/global loop; each step is `O(n)` (banded, with a small border for closed
+//! curves). When that fails, continuation in the shape parameter from a value where the
+//! system is easy takes over. Every solve is capped and reports its iterations and whether it
+//! converged; non-convergence is an [`Error::NotConverged`], never a silent result.
+//!
+//! # Feature flags
+//!
+//! - `render`: [`render`] (resvg, tiny-skia).
+//! - `serde`: JSON drawings ([`Design`]).
+//! - `cli`: the `kappa` command-line tool (implies both).
+//!
+//! A plain library build depends on kurbo, polycool and thiserror only.
 #![forbid(unsafe_code)]
 #![deny(missing_docs)]
 
 pub mod analysis;
+mod basis;
+#[cfg(feature = "serde")]
+mod design;
+mod designs;
 mod error;
+#[cfg(all(feature = "render", feature = "serde"))]
+pub mod gallery;
+mod linalg;
 mod point3;
 #[cfg(feature = "render")]
 pub mod render;
-
-pub use error::Error;
-pub use point3::{Point3, Vec3};
-mod basis;
-mod linalg;
 mod solver;
 mod spline;
 
+#[cfg(feature = "serde")]
+pub use design::{Design, DesignCurve};
+pub use designs::{builtin_design, BUILTIN_DESIGNS};
+pub use error::Error;
+pub use point3::{Point3, Vec3};
 pub use spline::{
     Coords, Scheme, Segment, Shape, SolveOptions, SolveReport, Solver, Solver3, SolverN, Spline,
     Spline3,
 };
-#[cfg(feature = "serde")]
-mod design;
-#[cfg(feature = "serde")]
-pub use design::{Design, DesignCurve};
-mod designs;
-pub use designs::{builtin_design, BUILTIN_DESIGNS};
-#[cfg(all(feature = "render", feature = "serde"))]
-pub mod gallery;

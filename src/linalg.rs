@@ -1,3 +1,5 @@
+// `!(x > 0.0)` is meant: it is also true for NaN, which must count as a zero pivot.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 //! Small direct solvers: banded and dense LU with partial pivoting, a bordered solve for
 //! cyclic (wrap-around) banded systems, and (cyclic) tridiagonal systems with vector
 //! right-hand sides. All buffers are owned by the structs and reused between solves.
@@ -188,16 +190,14 @@ impl DenseLu {
         for k in 0..n {
             b.swap(k, self.piv[k]);
             let bk = b[k];
-            for i in k + 1..n {
-                b[i] -= self.a[i * n + k] * bk;
+            for (i, bi) in b.iter_mut().enumerate().skip(k + 1) {
+                *bi -= self.a[i * n + k] * bk;
             }
         }
         for k in (0..n).rev() {
-            let mut s = b[k];
-            for j in k + 1..n {
-                s -= self.a[k * n + j] * b[j];
-            }
-            b[k] = s / self.a[k * n + k];
+            let row = &self.a[k * n + k + 1..(k + 1) * n];
+            let s: f64 = row.iter().zip(&b[k + 1..]).map(|(a, x)| a * x).sum();
+            b[k] = (b[k] - s) / self.a[k * n + k];
         }
     }
 }
@@ -355,8 +355,8 @@ fn thomas<const D: usize>(
         return false;
     }
     cp[0] = c[0] / den;
-    for k in 0..D {
-        d[0][k] /= den;
+    for x in d[0].iter_mut() {
+        *x /= den;
     }
     for i in 1..n {
         den = bi(i) - a[i] * cp[i - 1];

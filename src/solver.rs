@@ -1,3 +1,5 @@
+// `!(x > 0.0)` is meant: it is also true for NaN.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
 //! The κ/εκ-curve solver, written once for points of any dimension `D` (2D and 3D).
 //!
 //! # Unknowns and equations
@@ -425,7 +427,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let mut total = 0;
         let mut best: Option<(Outcome, State<D>)> = None;
         let keep = |ws: &Self, out: Outcome, best: &mut Option<(Outcome, State<D>)>| {
-            if best.as_ref().is_none_or(|b| out.residual < b.0.residual) {
+            if best.as_ref().map_or(true, |b| out.residual < b.0.residual) {
                 *best = Some((out, ws.state.clone()));
             }
         };
@@ -1143,7 +1145,7 @@ mod jacobian_tests {
         };
         let p: Vec<[f64; D]> = (0..n)
             .map(|i| {
-                let th = i as f64 / n as f64 * 6.283;
+                let th = i as f64 / n as f64 * std::f64::consts::TAU;
                 core::array::from_fn(|k| match k {
                     0 => th.cos() + 0.1 * rnd(),
                     1 => th.sin() + 0.1 * rnd(),
@@ -1241,7 +1243,7 @@ mod linear_tests {
     fn check<const D: usize, const B: usize>(closed: bool, n: usize) {
         let p: Vec<[f64; D]> = (0..n)
             .map(|i| {
-                let th = i as f64 / n as f64 * 6.283;
+                let th = i as f64 / n as f64 * std::f64::consts::TAU;
                 core::array::from_fn(|k| match k {
                     0 => th.cos() * (1.0 + 0.2 * (3.0 * th).sin()),
                     1 => th.sin(),

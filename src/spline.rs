@@ -285,11 +285,11 @@ impl<const D: usize> Frame<D> {
         }
     }
 
-    fn to_local(&self, p: [f64; D]) -> [f64; D] {
+    fn to_local(self, p: [f64; D]) -> [f64; D] {
         core::array::from_fn(|k| (p[k] - self.center[k]) / self.size)
     }
 
-    fn to_user(&self, p: [f64; D]) -> [f64; D] {
+    fn to_user(self, p: [f64; D]) -> [f64; D] {
         core::array::from_fn(|k| p[k] * self.size + self.center[k])
     }
 }

@@ -417,7 +417,7 @@ fn scene_error_size() {
         .unwrap_err()
         .to_string();
     assert!(message.contains("0x5"), "{message}");
-    assert!(MAX_PIXELS >= 16384 * 4096);
+    const { assert!(MAX_PIXELS >= 16384 * 4096) };
 }
 
 #[test]
