@@ -27,7 +27,7 @@
 //! control points `c_{-1} = p_first`, `c_n = p_last` and `λ_{-1} = 0`, `λ_{n-1} = 1`.
 
 use crate::basis::{CubicEk, SegmentBasis, Stationarity};
-use crate::linalg::{solve_tridiagonal, BandLu, BorderedLu};
+use crate::linalg::{solve_tridiagonal, BandLu, BorderedLu, DenseLu};
 
 /// Regularization of the squared doubled triangle area, in normalized coordinates (drawing
 /// size 1): keeps the area differentiable for straight stretches while far below any real
@@ -55,6 +55,9 @@ const CHORD_CONTRACTION: f64 = 0.1;
 const MAX_CHORD: usize = 12;
 /// Newton budget of one continuation step.
 const STEP_BUDGET: usize = 16;
+/// Accuracy of `t` in the classic loop's root solve: Newton refines it afterwards, so the
+/// start-up iterations need not resolve it to the last digit.
+const PEAK_T_TOLERANCE: f64 = 1e-10;
 /// Iteration cap of the 1-D root solve for `t` in the classic loop.
 const ROOT_ITERATIONS: usize = 60;
 
@@ -167,49 +170,69 @@ struct Local<const D: usize> {
     t: f64,
 }
 
-/// The linear system of one Newton step.
+/// The linear system of one Newton step: banded for open curves, bordered banded for closed
+/// ones, dense when small.
 #[derive(Clone, Debug, Default)]
 struct Linear {
-    closed: bool,
+    mode: LinearMode,
     band: BandLu,
     bord: BorderedLu,
+    dense: DenseLu,
 }
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+enum LinearMode {
+    #[default]
+    Band,
+    Bordered,
+    Dense,
+}
+
+/// Systems up to this order are solved densely (a few small closed curves are the common
+/// case in drawings; the bordered solve only pays off above that).
+const DENSE_ORDER: usize = 24;
 
 impl Linear {
     fn reset(&mut self, closed: bool, n: usize, b: usize) {
-        self.closed = closed;
         // Block row j touches block columns j-1 ..= j+2, but only the G2 row (row D of the
         // block) reaches block j+2, and only its c part: ku = 2B - 1, kl = 2B - 1.
         let (kl, ku) = (2 * b - 1, 2 * b - 1);
-        if closed {
-            self.bord.reset((n - 2) * b, 2 * b, kl, ku);
+        self.mode = if n * b <= DENSE_ORDER {
+            LinearMode::Dense
+        } else if closed {
+            LinearMode::Bordered
         } else {
-            self.band.reset(n * b, kl, ku);
+            LinearMode::Band
+        };
+        match self.mode {
+            LinearMode::Dense => self.dense.reset(n * b),
+            LinearMode::Bordered => self.bord.reset((n - 2) * b, 2 * b, kl, ku),
+            LinearMode::Band => self.band.reset(n * b, kl, ku),
         }
     }
 
     #[inline]
     fn add(&mut self, i: usize, j: usize, v: f64) {
-        if self.closed {
-            self.bord.add(i, j, v);
-        } else {
-            self.band.add(i, j, v);
+        match self.mode {
+            LinearMode::Dense => self.dense.add(i, j, v),
+            LinearMode::Bordered => self.bord.add(i, j, v),
+            LinearMode::Band => self.band.add(i, j, v),
         }
     }
 
     fn factor(&mut self) -> bool {
-        if self.closed {
-            self.bord.factor()
-        } else {
-            self.band.factor()
+        match self.mode {
+            LinearMode::Dense => self.dense.factor(),
+            LinearMode::Bordered => self.bord.factor(),
+            LinearMode::Band => self.band.factor(),
         }
     }
 
     fn solve(&mut self, x: &mut [f64]) {
-        if self.closed {
-            self.bord.solve(x);
-        } else {
-            self.band.solve(x);
+        match self.mode {
+            LinearMode::Dense => self.dense.solve(x),
+            LinearMode::Bordered => self.bord.solve(x),
+            LinearMode::Band => self.band.solve(x),
         }
     }
 }
@@ -1041,7 +1064,7 @@ pub(crate) fn peak_parameter<const D: usize>(
         } else {
             0.5 * (lo + hi)
         };
-        if hi - lo < 1e-15 || (t - newton).abs() < 1e-16 && (v / dv).abs() < 1e-15 {
+        if hi - lo < PEAK_T_TOLERANCE || (t == newton && (v / dv).abs() < PEAK_T_TOLERANCE) {
             break;
         }
     }
