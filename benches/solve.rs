@@ -74,14 +74,19 @@ fn warm(c: &mut Criterion) {
 }
 
 fn scaling(c: &mut Criterion) {
-    let mut g = c.benchmark_group("closed_kappa_points");
+    let mut g = c.benchmark_group("closed_points");
     g.sample_size(10);
-    for n in [1_000usize, 10_000, 100_000] {
-        let pts = star(n);
-        g.bench_function(BenchmarkId::from_parameter(n), |b| {
-            let mut s = Solver::new();
-            b.iter(|| black_box(s.solve(&pts, true, Scheme::Kappa, &Shape::Neutral).unwrap()))
-        });
+    for (label, scheme, shape, sizes) in [
+        ("ek_cubic_0.85", Scheme::EkCubic, Shape::Global(0.85), &[1_000usize, 10_000, 100_000][..]),
+        ("kappa", Scheme::Kappa, Shape::Neutral, &[1_000usize, 10_000][..]),
+    ] {
+        for &n in sizes {
+            let pts = star(n);
+            g.bench_function(BenchmarkId::new(label, n), |b| {
+                let mut s = Solver::new();
+                b.iter(|| black_box(s.solve(&pts, true, scheme, &shape).unwrap()))
+            });
+        }
     }
     g.finish();
 }
