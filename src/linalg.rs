@@ -255,7 +255,8 @@ impl BorderedLu {
         let ni = self.ni;
         for col in 0..self.nb {
             let y = &mut self.ib[col * ni..(col + 1) * ni];
-            if ni > 0 {
+            // A border unknown that no interior row references has A_II⁻¹ · 0 = 0.
+            if ni > 0 && y.iter().any(|&v| v != 0.0) {
                 self.band.solve(y);
             }
             for &(r, c, v) in &self.bi {
@@ -277,7 +278,7 @@ impl BorderedLu {
         }
         self.s.solve(xb);
         for (col, &b) in xb.iter().enumerate() {
-            if b != 0.0 {
+            if b != 0.0 && ni > 0 {
                 let y = &self.ib[col * ni..(col + 1) * ni];
                 for (x, y) in xi.iter_mut().zip(y) {
                     *x -= y * b;
