@@ -77,8 +77,18 @@ fn scaling(c: &mut Criterion) {
     let mut g = c.benchmark_group("closed_points");
     g.sample_size(10);
     for (label, scheme, shape, sizes) in [
-        ("ek_cubic_0.85", Scheme::EkCubic, Shape::Global(0.85), &[1_000usize, 10_000, 100_000][..]),
-        ("kappa", Scheme::Kappa, Shape::Neutral, &[1_000usize, 10_000][..]),
+        (
+            "ek_cubic_0.85",
+            Scheme::EkCubic,
+            Shape::Global(0.85),
+            &[1_000usize, 10_000, 100_000][..],
+        ),
+        (
+            "kappa",
+            Scheme::Kappa,
+            Shape::Neutral,
+            &[1_000usize, 10_000][..],
+        ),
     ] {
         for &n in sizes {
             let pts = star(n);

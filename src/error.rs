@@ -31,6 +31,9 @@ pub enum Error {
         /// Index of the second point of the pair (wraps around for closed curves).
         next: usize,
     },
+    /// The points are so far apart that their extent overflows (coordinates near ±1e308).
+    #[error("the points span more than the largest finite number")]
+    ExtentOverflow,
     /// All points of a closed curve lie on one line, so no closed curve through them exists.
     #[error("all points of the closed curve are collinear")]
     Collinear,

@@ -63,7 +63,7 @@ pub fn solve_design(
 }
 
 /// Comb scales (tooth length per unit |κ|), one per curve: the largest |κ| of each curve gets
-/// a tooth of [`COMB_FRACTION`] of that curve's size, so small contours (an eye) do not
+/// a tooth of a fixed fraction (0.15) of that curve's size, so small contours (an eye) do not
 /// flatten the comb of large ones.
 pub fn comb_scales(curves: &[(BezPath, Vec<Point>)]) -> Vec<f64> {
     curves

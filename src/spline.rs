@@ -280,7 +280,8 @@ impl<const D: usize> Frame<D> {
         }
         let size = (0..D).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
         Frame {
-            center: core::array::from_fn(|k| 0.5 * (lo[k] + hi[k])),
+            // Halves first: (lo + hi) / 2 can overflow where lo/2 + hi/2 does not.
+            center: core::array::from_fn(|k| 0.5 * lo[k] + 0.5 * hi[k]),
             size: if size > 0.0 { size } else { 1.0 },
         }
     }
@@ -505,6 +506,9 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             ));
         }
         self.frame = Frame::new(&self.points);
+        if !self.frame.size.is_finite() || self.frame.center.iter().any(|c| !c.is_finite()) {
+            return Err(Error::ExtentOverflow);
+        }
         let local: Vec<[f64; D]> = self
             .points
             .iter()

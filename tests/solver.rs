@@ -591,3 +591,23 @@ fn random_inputs_convergence_rate() {
     }
     println!("{table}");
 }
+
+#[test]
+fn huge_and_tiny_coordinates() {
+    // Extents that overflow are reported; large but finite drawings solve.
+    let far = [
+        Point::new(-1e308, 0.0),
+        Point::new(1e308, 1.0),
+        Point::new(0.0, 1e308),
+    ];
+    assert_eq!(Spline::kappa(&far, true), Err(Error::ExtentOverflow));
+    // (The test's own κ = |r′×r″|/|r′|³ overflows beyond ±1e100.)
+    for scale in [1e-100, 1e-6, 1e6, 1e100] {
+        let pts: Vec<Point> = [(0.0, 0.0), (100.0, 10.0), (120.0, 90.0), (20.0, 110.0)]
+            .iter()
+            .map(|&(x, y)| Point::new(x * scale, y * scale))
+            .collect();
+        let s = Spline::ek_cubic(&pts, true, 0.8).unwrap();
+        check_spline(&s, &pts, true, 120.0 * scale, "scaled");
+    }
+}

@@ -1,0 +1,144 @@
+//! `kappa gallery`: render the README gallery.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::Args;
+use kappa::gallery::{comb_scales, design_scene, paper_figure, solve_design, PAPER_VARIANTS};
+use kappa::render::{hstack, Pixmap};
+use kappa::Scheme;
+
+use crate::builtin::{self, PAPER_DRAWINGS};
+use crate::failure::{self, Failure, Result};
+
+/// The drawings shown with all four variants.
+const FIGURE_DRAWINGS: [&str; 3] = ["bear", "elephant", "bird"];
+/// Side of each panel of the paper figures, in pixels.
+const FIGURE_PANEL: u32 = 360;
+/// Side of each panel of the overview of all drawings, in pixels.
+const OVERVIEW_PANEL: u32 = 300;
+/// Panels per row of the overview.
+const OVERVIEW_COLUMNS: usize = 3;
+/// White space between panels of the overview, in pixels (as in `paper_figure`).
+const GAP: u32 = 8;
+
+/// Render the README gallery (PNG figures and SVG panels).
+#[derive(Debug, Args)]
+#[command(
+    long_about = "Render the README gallery into DIR (created if needed):\n  \
+        <name>.png          bear, elephant and bird as a κ-curve and as εκ-curves with \
+        a = 0.75, 0.85, 0.95 side by side\n  \
+        <name>-<variant>.svg  one SVG per panel (variants kappa, ek-0.75, ek-0.85, ek-0.95)\n  \
+        drawings.png        all nine drawings of the εκ paper as κ-curves, in a 3 × 3 grid\n\
+        Prints the files written, one per line.",
+    after_help = "Examples:\n  kappa gallery\n  kappa gallery --out docs/gallery"
+)]
+pub struct GalleryArgs {
+    /// Output directory.
+    #[arg(long, value_name = "DIR", default_value = "gallery")]
+    out: PathBuf,
+}
+
+/// Runs `kappa gallery`.
+pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
+    let dir = &args.out;
+    std::fs::create_dir_all(dir)
+        .map_err(|e| Failure::new(format!("cannot create {}: {e}", dir.display())))?;
+    for name in FIGURE_DRAWINGS {
+        let design = builtin::load(name)?;
+        let figure = paper_figure(&design, FIGURE_PANEL)
+            .map_err(|e| Failure::new(format!("{name}: {e}")))?;
+        write_png(&dir.join(format!("{name}.png")), &figure)?;
+        // As in `paper_figure`: every panel uses the comb scales of the κ panel.
+        let kappa = solve_design(&design, Scheme::Kappa, 2.0 / 3.0)
+            .map_err(|e| Failure::new(format!("{name}: {e}")))?;
+        let scales = comb_scales(&kappa);
+        for (scheme, a) in PAPER_VARIANTS {
+            let svg = design_scene(
+                &design,
+                scheme,
+                a,
+                FIGURE_PANEL,
+                FIGURE_PANEL,
+                Some(&scales),
+            )
+            .map_err(Failure::new)
+            .and_then(|s| s.to_svg().map_err(Failure::new))
+            .map_err(|f| f.context(name))?;
+            let path = dir.join(format!("{name}-{}.svg", variant_name(scheme, a)));
+            failure::write_file(&path, svg.as_bytes())?;
+            announce(&path)?;
+        }
+    }
+    let mut rows = Vec::new();
+    for names in PAPER_DRAWINGS.chunks(OVERVIEW_COLUMNS) {
+        let mut panels = Vec::with_capacity(names.len());
+        for name in names {
+            let design = builtin::load(name)?;
+            let scene = design_scene(
+                &design,
+                Scheme::Kappa,
+                2.0 / 3.0,
+                OVERVIEW_PANEL,
+                OVERVIEW_PANEL,
+                None,
+            )
+            .map_err(|e| Failure::new(format!("{name}: {e}")))?;
+            panels.push(
+                scene
+                    .render()
+                    .map_err(|e| Failure::new(format!("{name}: {e}")))?,
+            );
+        }
+        rows.push(hstack(&panels, GAP).map_err(Failure::new)?);
+    }
+    write_png(&dir.join("drawings.png"), &vstack(&rows, GAP)?)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The file-name tag of a variant: `kappa` or `ek-<a>`.
+fn variant_name(scheme: Scheme, a: f64) -> String {
+    match scheme {
+        Scheme::Kappa => "kappa".to_owned(),
+        Scheme::EkCubic => format!("ek-{a}"),
+    }
+}
+
+/// Opaque images one above the other, left-aligned, with `gap` white rows between them (the
+/// library only stacks horizontally).
+fn vstack(images: &[Pixmap], gap: u32) -> Result<Pixmap> {
+    let width = images.iter().map(Pixmap::width).max().unwrap_or(0);
+    let gaps = gap.saturating_mul(images.len().saturating_sub(1) as u32);
+    let height = images
+        .iter()
+        .map(Pixmap::height)
+        .fold(gaps, u32::saturating_add);
+    let mut out = Pixmap::new(width, height)
+        .ok_or_else(|| Failure::new(format!("cannot make a {width}x{height} image")))?;
+    out.fill(resvg::tiny_skia::Color::WHITE);
+    let row_bytes = 4 * width as usize;
+    let mut y0 = 0usize;
+    for image in images {
+        let src_row = 4 * image.width() as usize;
+        let data = out.data_mut();
+        for (y, row) in image.data().chunks_exact(src_row).enumerate() {
+            let start = (y0 + y) * row_bytes;
+            data[start..start + src_row].copy_from_slice(row);
+        }
+        y0 += image.height() as usize + gap as usize;
+    }
+    Ok(out)
+}
+
+fn write_png(path: &Path, image: &Pixmap) -> Result<()> {
+    let png = image
+        .encode_png()
+        .map_err(|e| Failure::new(format!("cannot encode {}: {e}", path.display())))?;
+    failure::write_file(path, &png)?;
+    announce(path)
+}
+
+/// Prints the path of a file written.
+fn announce(path: &Path) -> Result<()> {
+    failure::print_stdout(&format!("{}\n", path.display()))
+}

@@ -1,0 +1,77 @@
+//! `kappa`: the command-line tool over the `kappa` library.
+//!
+//! Each subcommand lives in its own module; this file only parses the command line, runs the
+//! subcommand and turns failures into exit code 2 with one `kappa: error: …` line on stderr.
+
+mod bench;
+mod builtin;
+mod curve;
+mod diff;
+mod failure;
+mod gallery;
+mod picture;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use failure::EXIT_ERROR;
+
+/// Curves with controlled curvature: κ-curves and εκ-curves from the command line.
+#[derive(Debug, Parser)]
+#[command(
+    name = "kappa",
+    version,
+    about = "Curves with controlled curvature: κ-curves and εκ-curves from the command line",
+    long_about = "Curves with controlled curvature: κ-curves and εκ-curves from the command line.\n\n\
+        Every error ends the program with exit code 2 and exactly one line on stderr \
+        starting with 'kappa: error:'; nothing is then written to stdout.",
+    after_help = "Examples:\n  \
+        echo '{\"points\": [[0,0],[100,0],[50,80]]}' | kappa curve\n  \
+        kappa curve --builtin bear --scheme ek-cubic --shape 0.85 --png bear.png\n  \
+        kappa diff expected.png actual.png --out diff.png\n  \
+        kappa bench --repeat 11\n  \
+        kappa gallery --out gallery"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    Curve(curve::CurveArgs),
+    Diff(diff::DiffArgs),
+    Bench(bench::BenchArgs),
+    Gallery(gallery::GalleryArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return failure::usage_error(e),
+    };
+    failure::install_panic_hook();
+    let result = std::panic::catch_unwind(|| match &cli.command {
+        Command::Curve(args) => curve::run(args),
+        Command::Diff(args) => diff::run(args),
+        Command::Bench(args) => bench::run(args),
+        Command::Gallery(args) => gallery::run(args),
+    });
+    match result {
+        Ok(Ok(code)) => code,
+        Ok(Err(failure)) => failure.report(),
+        // The panic hook has already printed the one-line message.
+        Err(_) => ExitCode::from(EXIT_ERROR),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Cli;
+
+    #[test]
+    fn cli_definition_is_consistent() {
+        <Cli as clap::CommandFactory>::command().debug_assert();
+    }
+}
