@@ -218,7 +218,6 @@ pub(crate) struct BorderedLu {
     bi: Vec<(usize, usize, f64)>,
     /// `A_BB`, replaced by the Schur complement and factored.
     s: DenseLu,
-    scratch: Vec<f64>,
 }
 
 impl BorderedLu {
@@ -231,8 +230,6 @@ impl BorderedLu {
         self.ib.resize(ni * nb, 0.0);
         self.bi.clear();
         self.s.reset(nb);
-        self.scratch.clear();
-        self.scratch.resize(nb, 0.0);
     }
 
     /// Add `v` to the entry `(i, j)` of the whole matrix (border unknowns come last).
@@ -290,20 +287,20 @@ impl BorderedLu {
 
 /// Solve the tridiagonal system `a_i x_{i-1} + b_i x_i + c_i x_{i+1} = d_i` (with `a_0` and
 /// `c_{n-1}` ignored), or its cyclic version where `a_0` couples to `x_{n-1}` and `c_{n-1}`
-/// to `x_0` (Sherman–Morrison). `d` is overwritten with the solution; `scratch` needs
-/// `2n` entries. Returns `false` if a pivot vanishes.
+/// to `x_0` (Sherman–Morrison). `d` is overwritten with the solution. Returns `false` if a
+/// pivot vanishes.
 pub(crate) fn solve_tridiagonal<const D: usize>(
     a: &[f64],
     b: &[f64],
     c: &[f64],
     d: &mut [[f64; D]],
     cyclic: bool,
-    scratch: &mut Vec<f64>,
+    scratch: &mut TriScratch,
 ) -> bool {
     let n = d.len();
-    scratch.clear();
-    scratch.resize(2 * n, 0.0);
-    let (cp, u) = scratch.split_at_mut(n);
+    let TriScratch { cp, u } = scratch;
+    cp.clear();
+    cp.resize(n, 0.0);
     if !cyclic || n < 3 {
         return thomas(a, b, c, d, cp, None);
     }
@@ -311,16 +308,17 @@ pub(crate) fn solve_tridiagonal<const D: usize>(
     let gamma = -b[0];
     let b0 = b[0] - gamma;
     let bn = b[n - 1] - c[n - 1] * a[0] / gamma;
-    u.iter_mut().for_each(|x| *x = 0.0);
-    u[0] = gamma;
-    u[n - 1] = c[n - 1];
-    // Solve T z = u (scalar) and T y = d.
-    let mut ok = thomas_scalar(a, b, c, b0, bn, u, cp);
+    u.clear();
+    u.resize(n, [0.0]);
+    u[0] = [gamma];
+    u[n - 1] = [c[n - 1]];
+    // Solve T z = u and T y = d.
+    let mut ok = thomas(a, b, c, u, cp, Some((b0, bn)));
     ok &= thomas(a, b, c, d, cp, Some((b0, bn)));
     if !ok {
         return false;
     }
-    let fact_den = 1.0 + u[0] + a[0] / gamma * u[n - 1];
+    let fact_den = 1.0 + u[0][0] + a[0] / gamma * u[n - 1][0];
     if !(fact_den.abs() > 0.0) {
         return false;
     }
@@ -328,12 +326,19 @@ pub(crate) fn solve_tridiagonal<const D: usize>(
     for (k, x) in num.iter_mut().enumerate() {
         *x = d[0][k] + a[0] / gamma * d[n - 1][k];
     }
-    for (di, &ui) in d.iter_mut().zip(u.iter()) {
+    for (di, &[ui]) in d.iter_mut().zip(u.iter()) {
         for k in 0..D {
             di[k] -= num[k] / fact_den * ui;
         }
     }
     true
+}
+
+/// Buffers of [`solve_tridiagonal`], reused between solves.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct TriScratch {
+    cp: Vec<f64>,
+    u: Vec<[f64; 1]>,
 }
 
 /// Thomas algorithm with vector right-hand sides; `ends` overrides `b_0` and `b_{n-1}`.
@@ -375,45 +380,6 @@ fn thomas<const D: usize>(
         for k in 0..D {
             d[i][k] -= cp[i] * next[k];
         }
-    }
-    true
-}
-
-fn thomas_scalar(
-    a: &[f64],
-    b: &[f64],
-    c: &[f64],
-    b0: f64,
-    bn: f64,
-    d: &mut [f64],
-    cp: &mut [f64],
-) -> bool {
-    let n = d.len();
-    let bi = |i: usize| {
-        if i == 0 {
-            b0
-        } else if i == n - 1 {
-            bn
-        } else {
-            b[i]
-        }
-    };
-    let mut den = bi(0);
-    if !(den.abs() > 0.0) {
-        return false;
-    }
-    cp[0] = c[0] / den;
-    d[0] /= den;
-    for i in 1..n {
-        den = bi(i) - a[i] * cp[i - 1];
-        if !(den.abs() > 0.0) {
-            return false;
-        }
-        cp[i] = c[i] / den;
-        d[i] = (d[i] - a[i] * d[i - 1]) / den;
-    }
-    for i in (0..n - 1).rev() {
-        d[i] -= cp[i] * d[i + 1];
     }
     true
 }
@@ -520,7 +486,7 @@ mod tests {
                 }
                 assert!(dense.factor());
                 let mut x = d.clone();
-                let mut scratch = Vec::new();
+                let mut scratch = TriScratch::default();
                 assert!(solve_tridiagonal(&a, &b, &c, &mut x, cyclic, &mut scratch));
                 for k in 0..2 {
                     let mut col: Vec<f64> = d.iter().map(|v| v[k]).collect();

@@ -27,7 +27,7 @@
 //! control points `c_{-1} = p_first`, `c_n = p_last` and `λ_{-1} = 0`, `λ_{n-1} = 1`.
 
 use crate::basis::{CubicEk, SegmentBasis, Stationarity};
-use crate::linalg::{solve_tridiagonal, BandLu, BorderedLu, DenseLu};
+use crate::linalg::{solve_tridiagonal, BandLu, BorderedLu, DenseLu, TriScratch};
 
 /// Regularization of the squared doubled triangle area, in normalized coordinates (drawing
 /// size 1): keeps the area differentiable for straight stretches while far below any real
@@ -148,6 +148,40 @@ pub(crate) struct State<const D: usize> {
     pub t: Vec<f64>,
 }
 
+impl<const D: usize> State<D> {
+    /// The middle control point `c_i`, `i` taken cyclically for closed curves; for open ones
+    /// `c_{-1}` and `c_n` are the first and last input points.
+    #[inline]
+    pub(crate) fn control(&self, prob: &Problem<D>, i: isize) -> [f64; D] {
+        let n = self.t.len();
+        if prob.closed {
+            self.c[i.rem_euclid(n as isize) as usize]
+        } else if i < 0 {
+            prob.ghost[0]
+        } else if i as usize >= n {
+            prob.ghost[1]
+        } else {
+            self.c[i as usize]
+        }
+    }
+
+    /// The joint ratio `λ_i`, `i` taken cyclically for closed curves; for open ones
+    /// `λ_{-1} = 0` and `λ_{n-1} = λ_n = 1` (the ends are the input points).
+    #[inline]
+    pub(crate) fn ratio(&self, prob: &Problem<D>, i: isize) -> f64 {
+        let n = self.t.len();
+        if prob.closed {
+            self.lam[i.rem_euclid(n as isize) as usize]
+        } else if i < 0 {
+            0.0
+        } else if i as usize >= n {
+            1.0
+        } else {
+            self.lam[i as usize]
+        }
+    }
+}
+
 /// What a solve reports.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Outcome {
@@ -264,7 +298,7 @@ pub(crate) struct Workspace<const D: usize, const B: usize> {
     tol_cache: f64,
     tri: [Vec<f64>; 3],
     tri_d: Vec<[f64; D]>,
-    scratch: Vec<f64>,
+    scratch: TriScratch,
 }
 
 impl<const D: usize, const B: usize> Workspace<D, B> {
@@ -622,29 +656,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// Gather the variables of block `j` from `st`.
     #[inline]
     fn local(prob: &Problem<D>, st: &State<D>, j: usize) -> Local<D> {
-        let n = st.t.len();
-        let c = |i: isize| -> [f64; D] {
-            if prob.closed {
-                st.c[i.rem_euclid(n as isize) as usize]
-            } else if i < 0 {
-                prob.ghost[0]
-            } else if i as usize >= n {
-                prob.ghost[1]
-            } else {
-                st.c[i as usize]
-            }
-        };
-        let lam = |i: isize| -> f64 {
-            if prob.closed {
-                st.lam[i.rem_euclid(n as isize) as usize]
-            } else if i < 0 {
-                0.0
-            } else if i as usize >= n {
-                1.0
-            } else {
-                st.lam[i as usize]
-            }
-        };
+        let c = |i: isize| st.control(prob, i);
+        let lam = |i: isize| st.ratio(prob, i);
         let j = j as isize;
         Local {
             cm: c(j - 1),

@@ -658,28 +658,8 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         let st = &self.ws.state;
         let n = st.t.len();
         let prob = &self.prob;
-        let c = |i: isize| -> [f64; D] {
-            if prob.closed {
-                st.c[i.rem_euclid(n as isize) as usize]
-            } else if i < 0 {
-                prob.ghost[0]
-            } else if i as usize >= n {
-                prob.ghost[1]
-            } else {
-                st.c[i as usize]
-            }
-        };
-        let lam = |i: isize| -> f64 {
-            if prob.closed {
-                st.lam[i.rem_euclid(n as isize) as usize]
-            } else if i < 0 {
-                0.0
-            } else if i as usize >= n {
-                1.0
-            } else {
-                st.lam[i as usize]
-            }
-        };
+        let c = |i: isize| st.control(prob, i);
+        let lam = |i: isize| st.ratio(prob, i);
         let mut segments = Vec::with_capacity(n);
         let user = |p: [f64; D]| P::from_coords(self.frame.to_user(p));
         for j in 0..n {

@@ -6,7 +6,7 @@ use kurbo::{Affine, BezPath, ParamCurveExtrema, PathEl, Point, Rect, Vec2};
 use resvg::tiny_skia::Pixmap;
 use resvg::usvg;
 
-use super::{pixmap_new, PointStyle, RenderError, Style, MAX_PIXELS};
+use super::{pixmap_new, Color, PointStyle, RenderError, Style, MAX_PIXELS};
 
 /// Coordinates and lengths in the SVG are rounded to `1 / SVG_PRECISION` px.
 ///
@@ -485,15 +485,7 @@ fn write_path(svg: &mut String, path: &BezPath, style: &Style) {
         return;
     }
     let _ = write!(svg, r#"<path d="{}""#, path.to_svg());
-    match fill {
-        Some(c) => {
-            let _ = write!(svg, r#" fill="{c}""#);
-            if c.a < 255 {
-                let _ = write!(svg, r#" fill-opacity="{}""#, c.opacity());
-            }
-        }
-        None => svg.push_str(r#" fill="none""#),
-    }
+    write_fill(svg, fill);
     if let Some(c) = stroke {
         let _ = write!(
             svg,
@@ -510,6 +502,19 @@ fn write_path(svg: &mut String, path: &BezPath, style: &Style) {
     svg.push_str("/>\n");
 }
 
+/// The `fill` (and `fill-opacity`) attributes of an element.
+fn write_fill(svg: &mut String, fill: Option<Color>) {
+    match fill {
+        Some(c) => {
+            let _ = write!(svg, r#" fill="{c}""#);
+            if c.a < 255 {
+                let _ = write!(svg, r#" fill-opacity="{}""#, c.opacity());
+            }
+        }
+        None => svg.push_str(r#" fill="none""#),
+    }
+}
+
 fn write_circle(svg: &mut String, p: Point, style: &PointStyle) {
     let fill = Some(style.color).filter(|c| c.a > 0);
     let outline = style.outline.filter(|c| c.a > 0);
@@ -523,15 +528,7 @@ fn write_circle(svg: &mut String, p: Point, style: &PointStyle) {
         num(p.y),
         num(style.radius)
     );
-    match fill {
-        Some(c) => {
-            let _ = write!(svg, r#" fill="{c}""#);
-            if c.a < 255 {
-                let _ = write!(svg, r#" fill-opacity="{}""#, c.opacity());
-            }
-        }
-        None => svg.push_str(r#" fill="none""#),
-    }
+    write_fill(svg, fill);
     if let Some(c) = outline {
         let _ = write!(
             svg,
