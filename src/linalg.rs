@@ -171,12 +171,15 @@ impl DenseLu {
                 }
             }
             let inv = 1.0 / self.a[k * n + k];
-            for i in k + 1..n {
-                let f = self.a[i * n + k] * inv;
-                self.a[i * n + k] = f;
+            // Rows below k, each updated with the pivot row's active part (columns k+1..).
+            let (top, below) = self.a.split_at_mut((k + 1) * n);
+            let pivot_row = &top[k * n + k + 1..(k + 1) * n];
+            for row in below.chunks_exact_mut(n) {
+                let f = row[k] * inv;
+                row[k] = f;
                 if f != 0.0 {
-                    for j in k + 1..n {
-                        self.a[i * n + j] -= f * self.a[k * n + j];
+                    for (x, y) in row[k + 1..].iter_mut().zip(pivot_row) {
+                        *x -= f * y;
                     }
                 }
             }

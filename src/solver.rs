@@ -714,8 +714,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             let mut g2 = 0.0;
             let r = if jac {
                 let lin = &mut self.lin;
+                let columns = Columns::new::<D, B>(prob.closed, n, j);
                 let mut sink = |row: usize, col: Var, v: f64| {
-                    if let Some(c) = col.index::<D, B>(prob.closed, n, j) {
+                    if let Some(c) = columns.of::<D, B>(col) {
                         lin.add(j * B + row, c, v);
                     }
                 };
@@ -979,6 +980,39 @@ enum Var {
     L(isize),
     /// `t_j`.
     T,
+}
+
+/// The global columns of the variables of block `j`'s stencil, computed once per block.
+#[derive(Clone, Copy)]
+struct Columns {
+    /// First column of blocks `j-1 ..= j+2` (`None`: a ghost block of an open curve).
+    c: [Option<usize>; 4],
+    /// Column of `λ_{j-1} ..= λ_{j+2}` (`None` where fixed).
+    l: [Option<usize>; 4],
+    /// Column of `t_j`.
+    t: usize,
+}
+
+impl Columns {
+    #[inline]
+    fn new<const D: usize, const B: usize>(closed: bool, n: usize, j: usize) -> Columns {
+        let c = core::array::from_fn(|o| Var::C(o as isize - 1, 0).index::<D, B>(closed, n, j));
+        let l = core::array::from_fn(|o| Var::L(o as isize - 1).index::<D, B>(closed, n, j));
+        Columns {
+            c,
+            l,
+            t: j * B + D + 1,
+        }
+    }
+
+    #[inline]
+    fn of<const D: usize, const B: usize>(&self, v: Var) -> Option<usize> {
+        match v {
+            Var::C(off, k) => self.c[(off + 1) as usize].map(|b| b + k),
+            Var::L(off) => self.l[(off + 1) as usize],
+            Var::T => Some(self.t),
+        }
+    }
 }
 
 impl Var {
