@@ -21,7 +21,11 @@ fn main() {
         .collect();
     let start = Instant::now();
     match Solver::new().solve(&points, true, scheme, &shape) {
-        Ok(s) => println!("{n} points, {scheme:?}: {:?} in {:.3?}", s.report(), start.elapsed()),
+        Ok(s) => println!(
+            "{n} points, {scheme:?}: {:?} in {:.3?}",
+            s.report(),
+            start.elapsed()
+        ),
         Err(e) => println!("{n} points, {scheme:?}: {e} after {:.3?}", start.elapsed()),
     }
 }
