@@ -297,6 +297,8 @@ pub(crate) struct Workspace<const D: usize, const B: usize> {
     reduced: Vec<f64>,
     /// Per block, what eliminating `t_j` left behind (see [`Condensed`]).
     cond: Vec<Condensed<B>>,
+    /// Per block, the condensed system's columns of its stencil (set at assembly).
+    cols: Vec<Columns>,
     lin: Linear,
     /// What `lin` holds (for chord steps), and the row scales it was assembled with.
     lin_state: LinState,
@@ -368,7 +370,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     break;
                 }
                 out.iterations += 1;
-                let mut ok = self.condensed_step(prob);
+                let mut ok = self.condensed_step();
                 self.trial.clone_from(&self.state);
                 if ok {
                     for j in 0..n {
@@ -446,6 +448,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         self.scale.resize(n, [1.0; 2]);
         self.step.resize(n * B, 0.0);
         self.cond.resize(n, Condensed::default());
+        self.cols.resize(n, Columns::default());
         let mut out = Outcome::default();
         for _ in 0..classic.min(set.max_iterations) {
             self.classic_iteration(prob);
@@ -608,7 +611,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         self.lin_state = LinState::Factored;
         let n = self.n();
-        if !self.condensed_step(prob) {
+        if !self.condensed_step() {
             return false;
         }
         // Keep λ inside (0, 1) and t inside [0, 1].
@@ -656,7 +659,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// The Newton (or, with an older factorization, chord) step for the current residual:
     /// the condensed system is solved for `δc`, `δλ`, then each `δt_j` is recovered from its
     /// peak row. Fills `self.step`; `false` if it is not finite.
-    fn condensed_step(&mut self, prob: &Problem<D>) -> bool {
+    fn condensed_step(&mut self) -> bool {
         let n = self.n();
         let bb = B - 1;
         self.reduced.resize(n * bb, 0.0);
@@ -667,7 +670,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         self.lin.solve(&mut self.reduced);
         for j in 0..n {
-            let columns = Columns::new::<D, B>(prob.closed, n, j, bb);
+            let columns = self.cols[j];
             let c = &self.cond[j];
             let mut acc = -self.res[j][D + 1];
             for (o, block) in c.row.iter().enumerate() {
@@ -758,6 +761,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     Self::eval_block::<true, false>(prob, j, &loc, &mut scale, &mut g2, &mut sink);
                 self.cond[j] = condense::<D, B>(&mut jl);
                 let columns = Columns::new::<D, B>(prob.closed, n, j, B - 1);
+                self.cols[j] = columns;
                 for (row, entries) in jl.iter().enumerate().take(D + 1) {
                     for (o, block) in entries.iter().enumerate() {
                         for (k, &v) in block.iter().enumerate().take(D + 1) {
@@ -1090,7 +1094,7 @@ enum Var {
 
 /// The global columns of the variables of block `j`'s stencil in the condensed system
 /// (`stride` unknowns per block: `c` then `λ`), computed once per block.
-#[derive(Clone, Copy)]
+#[derive(Clone, Copy, Debug, Default)]
 struct Columns {
     /// First column of blocks `j-1 ..= j+2` (`None`: a ghost block of an open curve).
     c: [Option<usize>; 4],
@@ -1452,6 +1456,7 @@ mod linear_tests {
         ws.scale.resize(n, [1.0; 2]);
         ws.step.resize(n * B, 0.0);
         ws.cond.resize(n, Condensed::default());
+        ws.cols.resize(n, Columns::default());
         ws.lin.reset(closed, n, B - 1);
         ws.assemble(&prob, true, 1e-12);
         // The full Newton system, dense.
@@ -1475,7 +1480,7 @@ mod linear_tests {
         dense.solve(&mut full);
         // The condensed system through the banded / bordered / small dense solver.
         assert!(ws.lin.factor());
-        assert!(ws.condensed_step(&prob));
+        assert!(ws.condensed_step());
         for (a, b) in ws.step.iter().zip(&full) {
             assert!(
                 (a - b).abs() <= 1e-8 * (1.0 + b.abs()),
