@@ -58,7 +58,20 @@ fn check_spline(spline: &Spline, points: &[Point], closed: bool, size: f64, what
             err <= INTERP * size,
             "{what} seg {j}: interpolation error {err}"
         );
-        // The peak of |κ| on the segment is at t_max, unless forced to an end.
+        // The analysis module, run independently on the segment, finds its maximum |κ| at
+        // t_max (|Δt| ≤ 1e-6), unless the peak is forced to a segment end.
+        let max = kappa::analysis::CurvatureAnalysis::max_curvature(ps);
+        let at_end = seg.t_max <= 1e-9 || seg.t_max >= 1.0 - 1e-9;
+        let found = max.params.iter().any(|&t| (t - seg.t_max).abs() <= 1e-6);
+        let k_here = curvature(ps, seg.t_max).abs();
+        assert!(
+            found || at_end || (k_here - max.value).abs() <= 1e-9 * max.value,
+            "{what} seg {j}: analysis finds max |κ| {} at {:?}, t_max = {} (|κ| {k_here})",
+            max.value,
+            max.params,
+            seg.t_max
+        );
+        // The same by dense sampling.
         let (ts, ks) = sampled_peak(ps);
         let k_at = curvature(ps, seg.t_max).abs();
         assert!(
