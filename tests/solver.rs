@@ -624,3 +624,79 @@ fn huge_and_tiny_coordinates() {
         check_spline(&s, &pts, true, 120.0 * scale, "scaled");
     }
 }
+
+#[test]
+fn space_curves_interpolate_with_equal_curvature_at_joints() {
+    use kappa::analysis::{CurvatureAnalysis, SpaceBez};
+    use kappa::{Point3, Solver3};
+    // A closed wobbly loop in 3D and an open helix; κ and εκ.
+    let closed: Vec<Point3> = (0..9)
+        .map(|i| {
+            let th = i as f64 / 9.0 * std::f64::consts::TAU;
+            let r = if i % 2 == 0 { 100.0 } else { 80.0 };
+            Point3::new(r * th.cos(), r * th.sin(), 30.0 * (2.0 * th).sin())
+        })
+        .collect();
+    let helix: Vec<Point3> = (0..8)
+        .map(|i| {
+            let th = i as f64 * 0.9;
+            Point3::new(50.0 * th.cos(), 50.0 * th.sin(), 12.0 * th)
+        })
+        .collect();
+    for (pts, is_closed) in [(&closed, true), (&helix, false)] {
+        for (scheme, a) in SCHEMES {
+            let s = Solver3::new()
+                .solve(pts, is_closed, scheme, &shape_of(scheme, a))
+                .unwrap();
+            let off = if is_closed { 0 } else { 1 };
+            let segs: Vec<SpaceBez> = s
+                .segments()
+                .iter()
+                .map(|g| SpaceBez::new(&g.control_points()).unwrap())
+                .collect();
+            for (j, (g, b)) in s.segments().iter().zip(&segs).enumerate() {
+                // Interpolation at the peak, and the analysis module finds the peak there.
+                assert!(
+                    g.eval(g.t_max).distance(pts[j + off]) <= 1e-9 * 200.0,
+                    "{scheme:?} seg {j}"
+                );
+                let max = b.max_curvature();
+                let k = b.curvature(g.t_max);
+                let at_end = g.t_max <= 1e-9 || g.t_max >= 1.0 - 1e-9;
+                assert!(
+                    at_end
+                        || max.params.iter().any(|&t| (t - g.t_max).abs() <= 1e-6)
+                        || (k - max.value).abs() <= 1e-9 * max.value,
+                    "{scheme:?} seg {j}: max {} at {:?}, t_max {}",
+                    max.value,
+                    max.params,
+                    g.t_max
+                );
+            }
+            let joints = if is_closed {
+                segs.len()
+            } else {
+                segs.len() - 1
+            };
+            for j in 0..joints {
+                let (a0, b0) = (&segs[j], &segs[(j + 1) % segs.len()]);
+                assert_eq!(a0.end(), b0.start());
+                let (ka, kb) = (a0.curvature(1.0), b0.curvature(0.0));
+                assert!(
+                    (ka - kb).abs() <= 1e-9 * ka.max(kb),
+                    "{scheme:?} joint {j}: {ka} vs {kb}"
+                );
+                // G1: tangents parallel.
+                let (ta, tb) = (
+                    a0.end() - a0.control_points()[a0.control_points().len() - 2],
+                    b0.control_points()[1] - b0.start(),
+                );
+                let sin = ta.cross(tb).length() / (ta.length() * tb.length());
+                assert!(
+                    sin < 1e-9 && ta.dot(tb) > 0.0,
+                    "{scheme:?} joint {j}: angle {sin}"
+                );
+            }
+        }
+    }
+}
