@@ -391,6 +391,20 @@ fn thomas<const D: usize>(
 mod tests {
     use super::*;
 
+    /// `solve` and the dense LU give the same solution for `rhs`.
+    pub(super) fn assert_same_solution(
+        mut solve: impl FnMut(&mut [f64]),
+        dense: &DenseLu,
+        rhs: &[f64],
+    ) {
+        let (mut x1, mut x2) = (rhs.to_vec(), rhs.to_vec());
+        solve(&mut x1);
+        dense.solve(&mut x2);
+        for (a, b) in x1.iter().zip(&x2) {
+            assert!((a - b).abs() < 1e-9 * (1.0 + b.abs()), "{a} vs {b}");
+        }
+    }
+
     /// A deterministic pseudo-random sequence for tests.
     fn lcg(seed: &mut u64) -> f64 {
         *seed = seed
@@ -415,13 +429,8 @@ mod tests {
             }
         }
         let rhs: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
-        let (mut x1, mut x2) = (rhs.clone(), rhs.clone());
         assert!(band.factor() && dense.factor());
-        band.solve(&mut x1);
-        dense.solve(&mut x2);
-        for (a, b) in x1.iter().zip(&x2) {
-            assert!((a - b).abs() < 1e-9 * (1.0 + b.abs()), "{a} vs {b}");
-        }
+        assert_same_solution(|x| band.solve(x), &dense, &rhs);
     }
 
     #[test]
@@ -445,13 +454,8 @@ mod tests {
             }
         }
         let rhs: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
-        let (mut x1, mut x2) = (rhs.clone(), rhs.clone());
         assert!(bord.factor() && dense.factor());
-        bord.solve(&mut x1);
-        dense.solve(&mut x2);
-        for (a, b) in x1.iter().zip(&x2) {
-            assert!((a - b).abs() < 1e-9 * (1.0 + b.abs()), "{a} vs {b}");
-        }
+        assert_same_solution(|x| bord.solve(x), &dense, &rhs);
     }
 
     #[test]
@@ -530,12 +534,7 @@ mod cyclic_tests {
             }
         }
         let rhs: Vec<f64> = (0..nn).map(|i| (i as f64 * 0.7).sin()).collect();
-        let (mut x1, mut x2) = (rhs.clone(), rhs);
         assert!(bord.factor() && dense.factor());
-        bord.solve(&mut x1);
-        dense.solve(&mut x2);
-        for (a, b) in x1.iter().zip(&x2) {
-            assert!((a - b).abs() < 1e-9 * (1.0 + b.abs()), "{a} vs {b}");
-        }
+        super::tests::assert_same_solution(|x| bord.solve(x), &dense, &rhs);
     }
 }
