@@ -1184,6 +1184,25 @@ pub(crate) fn peak_parameter<const D: usize>(
     guess: f64,
 ) -> f64 {
     let d = sub(q2, q0);
+    if basis == CubicEk::QUADRATIC {
+        // Seed 004 eq. 4: |d|² t³ + 3 d·(q0-p) t² + (3q0 - 2p - q2)·(q0-p) t - |q0-p|² = 0,
+        // which has exactly one root in [0, 1].
+        let e = sub(q0, p);
+        let f: [f64; D] = core::array::from_fn(|k| 3.0 * q0[k] - 2.0 * p[k] - q2[k]);
+        let roots = kurbo::common::solve_cubic(-dot(e, e), dot(f, e), 3.0 * dot(d, e), dot(d, d));
+        let mut best: Option<f64> = None;
+        for t in roots {
+            let tc = t.clamp(0.0, 1.0);
+            if (t - tc).abs() <= 1e-9
+                && best.map_or(true, |b| (tc - guess).abs() < (b - guess).abs())
+            {
+                best = Some(tc);
+            }
+        }
+        if let Some(t) = best {
+            return t;
+        }
+    }
     let pa = sub(p, q0);
     let pb = sub(q2, p);
     let f = |t: f64| -> (f64, f64) {
