@@ -35,28 +35,32 @@ pub(crate) trait SegmentBasis: Copy {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct CubicEk {
     b: f64,
+    /// The shape parameter as given (kept so that it round-trips exactly).
+    a: f64,
 }
 
 impl CubicEk {
     /// The quadratic segment of κ-curves (`a = 2/3`).
-    pub(crate) const QUADRATIC: CubicEk = CubicEk { b: 0.0 };
+    pub(crate) const QUADRATIC: CubicEk = CubicEk {
+        b: 0.0,
+        a: 2.0 / 3.0,
+    };
 
     /// The segment with shape parameter `a` (`a = 2/3` maps exactly to [`CubicEk::QUADRATIC`]).
     pub(crate) fn new(a: f64) -> CubicEk {
         if a == 2.0 / 3.0 {
             CubicEk::QUADRATIC
         } else {
-            CubicEk { b: 2.0 - 3.0 * a }
+            CubicEk {
+                b: 2.0 - 3.0 * a,
+                a,
+            }
         }
     }
 
     /// The shape parameter `a`.
     pub(crate) fn a(&self) -> f64 {
-        if self.b == 0.0 {
-            2.0 / 3.0
-        } else {
-            (2.0 - self.b) / 3.0
-        }
+        self.a
     }
 
     /// `w0` and its derivatives of order 1 to 4.

@@ -406,11 +406,37 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
     }
 
     /// Re-solve after the points moved (same count, same topology, scheme and shapes),
-    /// starting from the previous solution. Falls back to a cold solve if there is none.
+    /// starting from the previous solution. Falls back to a cold solve if the previous one did
+    /// not converge or the number of points changed (a uniform shape carries over; per-point
+    /// shapes then give [`Error::ShapeCount`]). Without any previous solve it is an
+    /// [`Error::InvalidOption`].
     pub fn resolve(&mut self, points: &[P]) -> Result<Spline<P>, Error> {
+        if self.prob.basis.is_empty() && self.points.len() != 2 {
+            return Err(Error::InvalidOption("resolve needs a previous solve"));
+        }
         if !self.warm || points.len() != self.points.len() {
             let closed = self.prob.closed;
-            let shapes = self.shapes();
+            let shapes = if points.len() == self.points.len() {
+                self.shapes()
+            } else {
+                // Another number of points: a uniform shape carries over, per-point ones not.
+                let a = self.prob_shapes();
+                let inner = if closed {
+                    &a[..]
+                } else {
+                    &a[1..a.len().saturating_sub(1)]
+                };
+                match inner.first() {
+                    Some(&a0) if inner.iter().all(|&x| x == a0) => Shape::Global(a0),
+                    None => Shape::Neutral,
+                    _ => {
+                        return Err(Error::ShapeCount {
+                            expected: points.len(),
+                            got: self.points.len(),
+                        })
+                    }
+                }
+            };
             return self.solve(points, closed, self.scheme, &shapes);
         }
         let old_frame = self.frame;

@@ -700,3 +700,41 @@ fn space_curves_interpolate_with_equal_curvature_at_joints() {
         }
     }
 }
+
+#[test]
+fn resolve_without_a_previous_solve_or_with_another_count() {
+    let pts = [
+        Point::new(0.0, 0.0),
+        Point::new(100.0, 10.0),
+        Point::new(120.0, 90.0),
+        Point::new(20.0, 110.0),
+    ];
+    assert!(matches!(
+        Solver::new().resolve(&pts),
+        Err(Error::InvalidOption(_))
+    ));
+    let mut solver = Solver::new();
+    solver
+        .solve(&pts, true, Scheme::EkCubic, &Shape::Global(0.8))
+        .unwrap();
+    // One point more: the uniform shape carries over.
+    let five = [pts[0], pts[1], pts[2], pts[3], Point::new(-20.0, 50.0)];
+    let s = solver.resolve(&five).unwrap();
+    assert_eq!(s.segments().len(), 5);
+    assert!(s.segments().iter().all(|g| g.a == 0.8));
+    check_spline(&s, &five, true, 140.0, "count change");
+    // Per-point shapes cannot carry over to another count.
+    let mut solver = Solver::new();
+    solver
+        .solve(
+            &pts,
+            true,
+            Scheme::EkCubic,
+            &Shape::PerPoint(vec![0.7, 0.8, 0.9, 0.7]),
+        )
+        .unwrap();
+    assert!(matches!(
+        solver.resolve(&five),
+        Err(Error::ShapeCount { .. })
+    ));
+}
