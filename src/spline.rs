@@ -255,9 +255,45 @@ impl Spline<Point> {
         path
     }
 
-    /// SVG path data of [`Spline::to_bezpath`].
+    /// SVG path data of [`Spline::to_bezpath`]: the shortest decimal that reads back to the
+    /// same `f64`, in exponent form where that is shorter (`1e300`, not 301 digits).
     pub fn to_svg(&self) -> String {
-        self.to_bezpath().to_svg()
+        use kurbo::PathEl;
+        use std::fmt::Write as _;
+        let mut out = String::new();
+        let mut put = |cmd: char, pts: &[Point]| {
+            if !out.is_empty() {
+                out.push(' ');
+            }
+            out.push(cmd);
+            for (i, p) in pts.iter().enumerate() {
+                if i > 0 {
+                    out.push(' ');
+                }
+                let _ = write!(out, "{},{}", svg_number(p.x), svg_number(p.y));
+            }
+        };
+        for el in self.to_bezpath().elements() {
+            match *el {
+                PathEl::MoveTo(p) => put('M', &[p]),
+                PathEl::LineTo(p) => put('L', &[p]),
+                PathEl::QuadTo(p1, p2) => put('Q', &[p1, p2]),
+                PathEl::CurveTo(p1, p2, p3) => put('C', &[p1, p2, p3]),
+                PathEl::ClosePath => put('Z', &[]),
+            }
+        }
+        out
+    }
+}
+
+/// A number for SVG: Rust's shortest round-trip decimal, or its exponent form when shorter.
+fn svg_number(x: f64) -> String {
+    let plain = format!("{x}");
+    let exp = format!("{x:e}");
+    if exp.len() < plain.len() {
+        exp
+    } else {
+        plain
     }
 }
 

@@ -738,3 +738,19 @@ fn resolve_without_a_previous_solve_or_with_another_count() {
         Err(Error::ShapeCount { .. })
     ));
 }
+
+#[test]
+fn svg_path_data_reads_back_exactly_and_stays_short() {
+    for scale in [1e-100, 1.0, 1e100] {
+        let pts: Vec<Point> = [(0.0, 0.0), (100.0, 10.0), (120.0, 90.0), (20.0, 110.0)]
+            .iter()
+            .map(|&(x, y)| Point::new(x * scale, y * scale))
+            .collect();
+        let s = Spline::ek_cubic(&pts, true, 0.8).unwrap();
+        let d = s.to_svg();
+        assert!(d.starts_with('M') && d.ends_with('Z'), "{d}");
+        assert!(d.len() < 700, "path data of {} bytes: {d}", d.len());
+        let back = kurbo::BezPath::from_svg(&d).unwrap();
+        assert_eq!(back, s.to_bezpath());
+    }
+}
