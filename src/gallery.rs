@@ -20,6 +20,8 @@ pub const PAPER_VARIANTS: [(Scheme, f64); 4] = [
 const COMB_FRACTION: f64 = 0.15;
 /// Comb samples per segment.
 const COMB_SAMPLES: usize = 16;
+/// Margin around the input points, as a fraction of the drawing's larger side.
+const VIEW_MARGIN: f64 = 0.1;
 /// The largest |κ| used to scale the comb, relative to 1 / drawing size: keeps a near-cusp
 /// from flattening every other tooth.
 const COMB_KAPPA_CAP: f64 = 60.0;
@@ -93,37 +95,49 @@ pub fn design_scene(
     combs: Option<&[f64]>,
 ) -> Result<Scene, GalleryError> {
     let curves = solve_design(design, scheme, a)?;
+    Ok(curves_scene(&curves, width, height, combs))
+}
+
+/// A `width × height` scene of solved curves (paths with their input points): curvature
+/// combs, curves and points, in a view of the input points with a margin (y down). `combs`
+/// are the tooth lengths per unit |κ|, one per curve (`None`: from these curves, see
+/// [`comb_scales`]). This is how [`design_scene`] draws, for curves solved elsewhere (with
+/// other options or per-point shapes).
+pub fn curves_scene(
+    curves: &[(BezPath, Vec<Point>)],
+    width: u32,
+    height: u32,
+    combs: Option<&[f64]>,
+) -> Scene {
     let own;
     let scales = match combs {
         Some(c) if c.len() == curves.len() => c,
         _ => {
-            own = comb_scales(&curves);
+            own = comb_scales(curves);
             &own[..]
         }
     };
     let mut scene = Scene::new().with_size(width, height);
-    if let Some(view) = view_box(design) {
+    if let Some(view) = view_box(curves.iter().flat_map(|(_, pts)| pts.iter().copied())) {
         scene = scene.with_view_box(view);
     }
     for ((path, _), &scale) in curves.iter().zip(scales) {
         scene = scene.comb(&curvature_comb(path, scale, COMB_SAMPLES));
     }
-    for (path, pts) in &curves {
+    for (path, pts) in curves {
         scene = scene.curve(path).input_points(pts);
     }
-    Ok(scene)
+    scene
 }
 
-/// The view of a drawing: its points' bounding box with a margin, the same for every scheme so
-/// that panels line up.
-fn view_box(design: &Design) -> Option<Rect> {
-    let mut bounds: Option<Rect> = None;
-    for p in design.curves.iter().flat_map(|c| c.points.iter()) {
-        let p = Point::new(p[0], p[1]);
-        bounds = Some(bounds.map_or(Rect::from_points(p, p), |r| r.union_pt(p)));
-    }
-    let pad = 0.1 * design.size();
-    bounds.map(|b| b.inflate(pad, pad))
+/// The view of a drawing: its points' bounding box with a margin of [`VIEW_MARGIN`] × its
+/// larger side, the same for every scheme so that panels line up.
+fn view_box(points: impl Iterator<Item = Point>) -> Option<Rect> {
+    let bounds = points.fold(None, |acc: Option<Rect>, p| {
+        Some(acc.map_or(Rect::from_points(p, p), |r| r.union_pt(p)))
+    })?;
+    let pad = VIEW_MARGIN * bounds.width().max(bounds.height());
+    Some(bounds.inflate(pad, pad))
 }
 
 /// The paper-style figure: the drawing as a κ-curve and as εκ-curves with `a = 0.75, 0.85,
