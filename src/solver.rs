@@ -303,8 +303,6 @@ pub(crate) struct Workspace<const D: usize, const B: usize> {
     /// What `lin` holds (for chord steps), and the row scales it was assembled with.
     lin_state: LinState,
     fact_scale: Vec<[f64; 2]>,
-    /// The tolerance of the solve in progress.
-    tol_cache: f64,
     tri: [Vec<f64>; 3],
     tri_d: Vec<[f64; D]>,
     scratch: TriScratch,
@@ -347,7 +345,6 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// [`CHORD_CONTRACTION`] or better, then Newton.
     pub(crate) fn solve_warm(&mut self, prob: &Problem<D>, set: &Settings) -> Outcome {
         let n = prob.p.len();
-        self.tol_cache = set.tolerance;
         let mut out = Outcome::default();
         if self.lin_state == LinState::Assembled && self.fact_scale.len() == n {
             // The Jacobian at the previous solution, assembled by its convergence check.
@@ -359,7 +356,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         if self.lin_state == LinState::Factored && self.fact_scale.len() == n && self.res.len() == n
         {
-            let mut phi = self.residual_frozen(prob);
+            let mut phi = self.residual_frozen(prob, set.tolerance);
             for _ in 0..MAX_CHORD {
                 if self.max_residual() <= set.tolerance {
                     out.converged = true;
@@ -387,7 +384,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     break;
                 }
                 core::mem::swap(&mut self.state, &mut self.trial);
-                let phi_new = self.residual_frozen(prob);
+                let phi_new = self.residual_frozen(prob, set.tolerance);
                 if !(phi_new <= CHORD_CONTRACTION * phi) {
                     // Not contracting: undo and let Newton take over.
                     core::mem::swap(&mut self.state, &mut self.trial);
@@ -420,7 +417,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
 
     /// The residual (and convergence measures) of the current state with the row scales of
     /// the stored factorization; returns the merit.
-    fn residual_frozen(&mut self, prob: &Problem<D>) -> f64 {
+    fn residual_frozen(&mut self, prob: &Problem<D>, tol: f64) -> f64 {
         let n = self.n();
         let mut phi = 0.0;
         for j in 0..n {
@@ -432,9 +429,19 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 Self::eval_block::<false, true>(prob, j, &loc, &mut scale, &mut g2, &mut ignore);
             phi += r.iter().map(|v| 0.5 * v * v).sum::<f64>();
             self.res[j] = r;
-            self.check[j] = Self::check_row(r, g2, &loc, self.tol_cache);
+            self.check[j] = Self::check_row(r, g2, &loc, tol);
         }
         phi
+    }
+
+    /// Size the per-block buffers of the Newton steps for `n` blocks (no-op once sized).
+    fn size_buffers(&mut self, n: usize) {
+        self.res.resize(n, [0.0; B]);
+        self.check.resize(n, [0.0; B]);
+        self.scale.resize(n, [1.0; 2]);
+        self.step.resize(n * B, 0.0);
+        self.cond.resize(n, Condensed::default());
+        self.cols.resize(n, Columns::default());
     }
 
     /// Solve from the current state (a cold start or a previous solution), after `classic`
@@ -443,12 +450,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let n = prob.p.len();
         debug_assert_eq!(self.n(), n);
         self.trial.clone_from(&self.state);
-        self.res.resize(n, [0.0; B]);
-        self.check.resize(n, [0.0; B]);
-        self.scale.resize(n, [1.0; 2]);
-        self.step.resize(n * B, 0.0);
-        self.cond.resize(n, Condensed::default());
-        self.cols.resize(n, Columns::default());
+        self.size_buffers(n);
         let mut out = Outcome::default();
         for _ in 0..classic.min(set.max_iterations) {
             self.classic_iteration(prob);
@@ -722,12 +724,13 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         c
     }
 
-    /// Merit `½|R|²` of the trial state, with the row scales of the current state.
+    /// Merit `½|R|²` of the trial state, with row scales computed at the trial state (which
+    /// globalizes better on the drawings than the scales of the current state).
     fn trial_merit(&self, prob: &Problem<D>) -> f64 {
         let mut phi = 0.0;
         for j in 0..self.n() {
             let loc = Self::local(prob, &self.trial, j);
-            let mut sc = self.scale[j];
+            let mut sc = [1.0; 2];
             let r = Self::block::<false>(prob, j, &loc, &mut sc);
             phi += r.iter().map(|v| 0.5 * v * v).sum::<f64>();
         }
@@ -1470,12 +1473,7 @@ mod linear_tests {
         let mut ws = Workspace::<D, B>::default();
         ws.cold_start(&prob);
         ws.classic_iteration(&prob);
-        ws.res.resize(n, [0.0; B]);
-        ws.check.resize(n, [0.0; B]);
-        ws.scale.resize(n, [1.0; 2]);
-        ws.step.resize(n * B, 0.0);
-        ws.cond.resize(n, Condensed::default());
-        ws.cols.resize(n, Columns::default());
+        ws.size_buffers(n);
         ws.lin.reset(closed, n, B - 1);
         ws.assemble(&prob, true, 1e-12);
         // The full Newton system, dense.

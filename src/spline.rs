@@ -456,14 +456,9 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                 self.shapes()
             } else {
                 // Another number of points: a uniform shape carries over, per-point ones not.
-                let a = self.prob_shapes();
-                let inner = if closed {
-                    &a[..]
-                } else {
-                    &a[1..a.len().saturating_sub(1)]
-                };
-                match inner.first() {
-                    Some(&a0) if inner.iter().all(|&x| x == a0) => Shape::Global(a0),
+                let mut a = self.prob.basis.iter().map(|b| b.a());
+                match a.next() {
+                    Some(a0) if a.all(|x| x == a0) => Shape::Global(a0),
                     None => Shape::Neutral,
                     _ => {
                         return Err(Error::ShapeCount {
@@ -496,22 +491,12 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
     /// Re-solve with new shape parameters (same points), starting from the previous solution:
     /// the interactive "sharpness slider" case. Falls back to a cold solve if there is none.
     pub fn resolve_shapes(&mut self, scheme: Scheme, shape: &Shape) -> Result<Spline<P>, Error> {
-        let points: Vec<P> = self.points.iter().map(|&c| P::from_coords(c)).collect();
-        let closed = self.prob.closed;
         if !self.warm {
-            return self.solve(&points, closed, scheme, shape);
+            let points: Vec<P> = self.points.iter().map(|&c| P::from_coords(c)).collect();
+            return self.solve(&points, self.prob.closed, scheme, shape);
         }
-        let shapes = expand_shapes(scheme, shape, points.len())?;
-        let range = if closed {
-            0..points.len()
-        } else {
-            1..points.len() - 1
-        };
-        self.scheme = scheme;
-        self.prob.basis.clear();
-        self.prob
-            .basis
-            .extend(shapes[range].iter().map(|&a| CubicEk::new(a)));
+        let shapes = expand_shapes(scheme, shape, self.points.len())?;
+        self.set_shapes(scheme, &shapes);
         self.ws.invalidate();
         self.run()
     }
@@ -591,17 +576,25 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             return Err(Error::Collinear);
         }
         let shapes = expand_shapes(scheme, shape, m)?;
-        self.scheme = scheme;
-        let range = if closed { 0..m } else { 1..m - 1 };
         self.prob.closed = closed;
         self.prob.p.clear();
-        self.prob.p.extend_from_slice(&local[range.clone()]);
+        self.prob
+            .p
+            .extend_from_slice(&local[block_range(closed, m)]);
+        self.prob.ghost = [local[0], local[m - 1]];
+        self.set_shapes(scheme, &shapes);
+        Ok(())
+    }
+
+    /// Set the scheme and the segment bases from validated per-point shapes (for open curves
+    /// the first and last points have no segment).
+    fn set_shapes(&mut self, scheme: Scheme, shapes: &[f64]) {
+        self.scheme = scheme;
         self.prob.basis.clear();
+        let range = block_range(self.prob.closed, shapes.len());
         self.prob
             .basis
             .extend(shapes[range].iter().map(|&a| CubicEk::new(a)));
-        self.prob.ghost = [local[0], local[m - 1]];
-        Ok(())
     }
 
     fn run(&mut self) -> Result<Spline<P>, Error> {
@@ -764,6 +757,16 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             segments,
             report,
         }
+    }
+}
+
+/// The input points that get a segment: all of a closed curve, the interior ones of an open
+/// curve (`m ≥ 2`).
+fn block_range(closed: bool, m: usize) -> core::ops::Range<usize> {
+    if closed {
+        0..m
+    } else {
+        1..m - 1
     }
 }
 
