@@ -545,10 +545,11 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     ) -> Outcome {
         let mut total = used;
         let mut out = Outcome::default();
+        scratch.closed = prob.closed;
+        scratch.ghost = prob.ghost;
+        scratch.p.clone_from(&prob.p);
+        // Only the shapes move along the homotopy.
         let blend = |scratch: &mut Problem<D>, s: f64| {
-            scratch.closed = prob.closed;
-            scratch.ghost = prob.ghost;
-            scratch.p.clone_from(&prob.p);
             scratch.basis.clear();
             scratch.basis.extend(
                 prob.basis
