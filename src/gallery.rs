@@ -16,7 +16,10 @@ pub const PAPER_VARIANTS: [(Scheme, f64); 4] = [
     (Scheme::EkCubic, 0.95),
 ];
 
-/// Teeth of the curvature comb reach this fraction of the drawing size at the largest |κ|.
+/// Gap between the panels of [`paper_figure`], in pixels.
+pub const FIGURE_GAP: u32 = 8;
+
+/// Teeth of a curve's comb reach this fraction of that curve's size at its largest |κ|.
 const COMB_FRACTION: f64 = 0.15;
 /// Comb samples per segment.
 const COMB_SAMPLES: usize = 16;
@@ -140,15 +143,29 @@ fn view_box(points: impl Iterator<Item = Point>) -> Option<Rect> {
     Some(bounds.inflate(pad, pad))
 }
 
-/// The paper-style figure: the drawing as a κ-curve and as εκ-curves with `a = 0.75, 0.85,
-/// 0.95` side by side, each panel `panel × panel` pixels, with the comb scales of the κ panel
-/// in every panel so that their curvature can be compared.
-pub fn paper_figure(design: &Design, panel: u32) -> Result<Pixmap, GalleryError> {
-    let kappa = solve_design(design, Scheme::Kappa, 2.0 / 3.0)?;
-    let scales = comb_scales(&kappa);
-    let mut images = Vec::with_capacity(PAPER_VARIANTS.len());
+/// The panels of the paper-style figure as scenes: the drawing as a κ-curve and as εκ-curves
+/// with `a = 0.75, 0.85, 0.95` ([`PAPER_VARIANTS`]), each `panel × panel` pixels, with the
+/// comb scales of the κ panel in every panel so that their curvature can be compared.
+pub fn paper_scenes(design: &Design, panel: u32) -> Result<Vec<Scene>, GalleryError> {
+    let mut scales = Vec::new();
+    let mut scenes = Vec::with_capacity(PAPER_VARIANTS.len());
     for (scheme, a) in PAPER_VARIANTS {
-        images.push(design_scene(design, scheme, a, panel, panel, Some(&scales))?.render()?);
+        // The first variant is the κ-curve, whose comb scales every panel uses.
+        let curves = solve_design(design, scheme, a)?;
+        if scales.is_empty() {
+            scales = comb_scales(&curves);
+        }
+        scenes.push(curves_scene(&curves, panel, panel, Some(&scales)));
     }
-    Ok(hstack(&images, 8)?)
+    Ok(scenes)
+}
+
+/// The paper-style figure: the [`paper_scenes`] rendered side by side.
+pub fn paper_figure(design: &Design, panel: u32) -> Result<Pixmap, GalleryError> {
+    let scenes = paper_scenes(design, panel)?;
+    let images = scenes
+        .iter()
+        .map(|s| s.render())
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(hstack(&images, FIGURE_GAP)?)
 }

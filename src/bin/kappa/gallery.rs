@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Args;
-use kappa::gallery::{comb_scales, design_scene, paper_figure, solve_design, PAPER_VARIANTS};
+use kappa::gallery::{design_scene, paper_scenes, FIGURE_GAP, PAPER_VARIANTS};
 use kappa::render::{hstack, Pixmap};
 use kappa::Scheme;
 
@@ -19,8 +19,6 @@ const FIGURE_PANEL: u32 = 360;
 const OVERVIEW_PANEL: u32 = 300;
 /// Panels per row of the overview.
 const OVERVIEW_COLUMNS: usize = 3;
-/// White space between panels of the overview, in pixels (as in `paper_figure`).
-const GAP: u32 = 8;
 
 /// Render the README gallery (PNG figures and SVG panels).
 #[derive(Debug, Args)]
@@ -46,29 +44,26 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
         .map_err(|e| Failure::new(format!("cannot create {}: {e}", dir.display())))?;
     for name in FIGURE_DRAWINGS {
         let design = builtin::load(name)?;
-        let figure = paper_figure(&design, FIGURE_PANEL)
+        let scenes = paper_scenes(&design, FIGURE_PANEL)
             .map_err(|e| Failure::new(format!("{name}: {e}")))?;
-        write_png(&dir.join(format!("{name}.png")), &figure)?;
-        // As in `paper_figure`: every panel uses the comb scales of the κ panel.
-        let kappa = solve_design(&design, Scheme::Kappa, 2.0 / 3.0)
-            .map_err(|e| Failure::new(format!("{name}: {e}")))?;
-        let scales = comb_scales(&kappa);
-        for (scheme, a) in PAPER_VARIANTS {
-            let svg = design_scene(
-                &design,
-                scheme,
-                a,
-                FIGURE_PANEL,
-                FIGURE_PANEL,
-                Some(&scales),
-            )
-            .map_err(Failure::new)
-            .and_then(|s| s.to_svg().map_err(Failure::new))
-            .map_err(|f| f.context(name))?;
+        let mut images = Vec::with_capacity(scenes.len());
+        for ((scheme, a), scene) in PAPER_VARIANTS.into_iter().zip(&scenes) {
+            let svg = scene
+                .to_svg()
+                .map_err(|e| Failure::new(format!("{name}: {e}")))?;
             let path = dir.join(format!("{name}-{}.svg", variant_name(scheme, a)));
             failure::write_file(&path, svg.as_bytes())?;
             announce(&path)?;
+            images.push(
+                scene
+                    .render()
+                    .map_err(|e| Failure::new(format!("{name}: {e}")))?,
+            );
         }
+        // The same picture as `kappa::gallery::paper_figure`, from the scenes drawn above.
+        let figure =
+            hstack(&images, FIGURE_GAP).map_err(|e| Failure::new(format!("{name}: {e}")))?;
+        write_png(&dir.join(format!("{name}.png")), &figure)?;
     }
     let mut rows = Vec::new();
     for names in PAPER_DRAWINGS.chunks(OVERVIEW_COLUMNS) {
@@ -90,9 +85,9 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
                     .map_err(|e| Failure::new(format!("{name}: {e}")))?,
             );
         }
-        rows.push(hstack(&panels, GAP).map_err(Failure::new)?);
+        rows.push(hstack(&panels, FIGURE_GAP).map_err(Failure::new)?);
     }
-    write_png(&dir.join("drawings.png"), &vstack(&rows, GAP)?)?;
+    write_png(&dir.join("drawings.png"), &vstack(&rows, FIGURE_GAP)?)?;
     Ok(ExitCode::SUCCESS)
 }
 
