@@ -81,7 +81,7 @@ fn dot<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
 }
 
 #[inline]
-fn lerp<const D: usize>(a: [f64; D], b: [f64; D], t: f64) -> [f64; D] {
+pub(crate) fn lerp<const D: usize>(a: [f64; D], b: [f64; D], t: f64) -> [f64; D] {
     core::array::from_fn(|k| a[k] + t * (b[k] - a[k]))
 }
 
@@ -182,6 +182,19 @@ impl<const D: usize> State<D> {
         } else {
             self.lam[i as usize]
         }
+    }
+
+    /// The three defining points of segment `j`: `c_{j,0} = lerp(c_{j-1}, c_j, λ_{j-1})`,
+    /// `c_j`, `c_{j,2} = lerp(c_j, c_{j+1}, λ_j)` (seed 000 eq. 7).
+    #[inline]
+    pub(crate) fn segment(&self, prob: &Problem<D>, j: usize) -> [[f64; D]; 3] {
+        let j = j as isize;
+        let c = self.control(prob, j);
+        [
+            lerp(self.control(prob, j - 1), c, self.ratio(prob, j - 1)),
+            c,
+            lerp(c, self.control(prob, j + 1), self.ratio(prob, j)),
+        ]
     }
 }
 
@@ -984,8 +997,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         self.tri_d.resize(n, [0.0; D]);
         for j in 0..n {
             let l = Self::local(prob, &self.state, j);
-            let q0 = lerp(l.cm, l.c0, l.lm);
-            let q2 = lerp(l.c0, l.c1, l.l0);
+            let [q0, _, q2] = self.state.segment(prob, j);
             let basis = prob.basis[j];
             let t = peak_parameter(basis, q0, q2, prob.p[j], l.t);
             self.state.t[j] = t;

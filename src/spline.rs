@@ -603,7 +603,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         if !closed && m == 2 {
             // A straight segment.
             let (p0, p1) = (self.points[0], self.points[1]);
-            let mid: [f64; D] = core::array::from_fn(|k| 0.5 * (p0[k] + p1[k]));
+            let mid = crate::solver::lerp(p0, p1, 0.5);
             let report = SolveReport {
                 converged: true,
                 ..SolveReport::default()
@@ -669,22 +669,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             st.lam[j] = if j + 1 == n { 1.0 } else { 0.5 };
         }
         for j in 0..n {
-            let prev = if j == 0 {
-                self.prob.ghost[0]
-            } else {
-                self.prob.p[j - 1]
-            };
-            let next = if j + 1 == n {
-                self.prob.ghost[1]
-            } else {
-                self.prob.p[j + 1]
-            };
-            let lm = if j == 0 { 0.0 } else { 0.5 };
-            let q0: [f64; D] =
-                core::array::from_fn(|k| prev[k] + lm * (self.prob.p[j][k] - prev[k]));
-            let q2: [f64; D] = core::array::from_fn(|k| {
-                self.prob.p[j][k] + st.lam[j] * (next[k] - self.prob.p[j][k])
-            });
+            let [q0, _, q2] = st.segment(&self.prob, j);
             // Along the line the position is monotone in t: bisect for the parameter of p_j.
             let basis = self.prob.basis[j];
             let p = self.prob.p[j];
@@ -713,27 +698,14 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         let st = &self.ws.state;
         let n = st.t.len();
         let prob = &self.prob;
-        let c = |i: isize| st.control(prob, i);
-        let lam = |i: isize| st.ratio(prob, i);
         let mut segments = Vec::with_capacity(n);
         let user = |p: [f64; D]| P::from_coords(self.frame.to_user(p));
+        // Segment j's end and segment j+1's start are the same `lerp(c_j, c_{j+1}, λ_j)`, so
+        // consecutive segments meet exactly.
         for j in 0..n {
-            let ji = j as isize;
-            let joint = |a: [f64; D], b: [f64; D], l: f64| -> [f64; D] {
-                core::array::from_fn(|k| a[k] + l * (b[k] - a[k]))
-            };
-            let q0 = if !prob.closed && j == 0 {
-                prob.ghost[0]
-            } else {
-                joint(c(ji - 1), c(ji), lam(ji - 1))
-            };
-            let q2 = if !prob.closed && j == n - 1 {
-                prob.ghost[1]
-            } else {
-                joint(c(ji), c(ji + 1), lam(ji))
-            };
+            let [q0, c, q2] = st.segment(prob, j);
             segments.push(Segment {
-                q: [user(q0), user(c(ji)), user(q2)],
+                q: [user(q0), user(c), user(q2)],
                 a: prob.basis[j].a(),
                 t_max: st.t[j],
                 degree: self.scheme.degree(),
@@ -743,13 +715,6 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         if !prob.closed {
             segments[0].q[0] = P::from_coords(self.points[0]);
             segments[n - 1].q[2] = P::from_coords(self.points[self.points.len() - 1]);
-        }
-        // Joints are computed once and shared, so consecutive segments meet exactly.
-        for j in 0..n {
-            let next = (j + 1) % n;
-            if prob.closed || next != 0 {
-                segments[next].q[0] = segments[j].q[2];
-            }
         }
         Spline {
             scheme: self.scheme,
