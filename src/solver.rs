@@ -198,6 +198,39 @@ impl<const D: usize> State<D> {
     }
 }
 
+/// The ingredients of the G2 condition at joint `j` (seed 000 eqs. 8–10):
+/// `X = k_j (1-λ_{j-1}) T_j` and `Y = k_{j+1} λ_{j+1} T_{j+1}` with the end coefficients `k`
+/// and the triangles `T_j = Δ(c_{j-1}, c_j, c_{j+1})`, `T_{j+1} = Δ(c_j, c_{j+1}, c_{j+2})`
+/// (areas with their gradients, see [`triangle`]). G2 holds when `(1-λ_j)² X = λ_j² Y`.
+#[derive(Clone, Copy)]
+struct JointTerms<const D: usize> {
+    k0: f64,
+    k1: f64,
+    tj: (f64, [f64; D], [f64; D]),
+    tj1: (f64, [f64; D], [f64; D]),
+    x: f64,
+    y: f64,
+}
+
+impl<const D: usize> JointTerms<D> {
+    #[inline]
+    fn new(prob: &Problem<D>, j: usize, l: &Local<D>) -> Self {
+        let n = prob.basis.len();
+        let k0 = prob.basis[j].end_coefficient();
+        let k1 = prob.basis[(j + 1) % n].end_coefficient();
+        let tj = triangle(l.cm, l.c0, l.c1);
+        let tj1 = triangle(l.c0, l.c1, l.c2);
+        JointTerms {
+            k0,
+            k1,
+            tj,
+            tj1,
+            x: k0 * (1.0 - l.lm) * tj.0,
+            y: k1 * l.l1 * tj1.0,
+        }
+    }
+}
+
 /// What a solve reports.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Outcome {
@@ -876,25 +909,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         // G2 joint (trivial for the last block of an open curve: λ_{n-1} = 1).
         let last_open = !prob.closed && j == n - 1;
         *g2 = 0.0;
-        let (x, y, tj, tj1, k0, k1);
-        if last_open {
-            res[D] = l.l0 - 1.0;
-            if !FROZEN {
-                scale[0] = 1.0;
-            }
-            x = 0.0;
-            y = 0.0;
-            tj = (0.0, [0.0; D], [0.0; D]);
-            tj1 = tj;
-            k0 = 0.0;
-            k1 = 0.0;
-        } else {
-            k0 = basis.end_coefficient();
-            k1 = prob.basis[(j + 1) % n].end_coefficient();
-            tj = triangle(l.cm, l.c0, l.c1);
-            tj1 = triangle(l.c0, l.c1, l.c2);
-            x = k0 * om * tj.0;
-            y = k1 * l.l1 * tj1.0;
+        let joint = (!last_open).then(|| JointTerms::new(prob, j, l));
+        if let Some(JointTerms { x, y, .. }) = joint {
             let (u, v) = ((1.0 - l.l0).powi(2) * x, l.l0 * l.l0 * y);
             res[D] = u - v;
             // The convergence test measures (r - 1)/(r + 1) with r = κ_j(1)² / κ_{j+1}(0)²,
@@ -903,6 +919,12 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             *g2 = (u - v).abs() / (u + v + 1e-300);
             if !FROZEN {
                 scale[0] = 1.0 / (x + y + 1e-300);
+            }
+        } else {
+            // The last block of an open curve: λ_{n-1} = 1.
+            res[D] = l.l0 - 1.0;
+            if !FROZEN {
+                scale[0] = 1.0;
             }
         }
         res[D] *= scale[0];
@@ -939,9 +961,15 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             }
             // Joint row.
             let sc = scale[0];
-            if last_open {
-                sink(D, Var::L(0), 1.0);
-            } else {
+            if let Some(JointTerms {
+                k0,
+                k1,
+                tj,
+                tj1,
+                x,
+                y,
+            }) = joint
+            {
                 sink(D, Var::L(0), -sc * 2.0 * ((1.0 - l.l0) * x + l.l0 * y));
                 let fa = sc * (1.0 - l.l0).powi(2);
                 let fb = -sc * l.l0 * l.l0;
@@ -958,6 +986,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     sink(D, Var::C(1, k), a_t * gc[k] - b_t * (ha[k] + hc[k]));
                     sink(D, Var::C(2, k), b_t * hc[k]);
                 }
+            } else {
+                sink(D, Var::L(0), 1.0);
             }
         }
         res
@@ -974,10 +1004,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 continue;
             }
             let l = Self::local(prob, &self.state, j);
-            let k0 = prob.basis[j].end_coefficient();
-            let k1 = prob.basis[(j + 1) % n].end_coefficient();
-            let a = (k0 * (1.0 - l.lm) * triangle(l.cm, l.c0, l.c1).0).sqrt();
-            let b = (k1 * l.l1 * triangle(l.c0, l.c1, l.c2).0).sqrt();
+            let jt = JointTerms::new(prob, j, &l);
+            let (a, b) = (jt.x.sqrt(), jt.y.sqrt());
             let lam = a / (a + b);
             self.trial.lam[j] = if lam.is_finite() {
                 lam.clamp(LAMBDA_MIN, 1.0 - LAMBDA_MIN)
