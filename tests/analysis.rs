@@ -50,6 +50,15 @@ fn assert_near(a: f64, b: f64, tol: f64, what: &str) {
     assert!((a - b).abs() <= tol, "{what}: {a} vs {b} (tol {tol})");
 }
 
+/// Two parameter lists (curvature extrema of two representations of one curve) agree: same
+/// length, and pairwise within `tol`.
+fn assert_same_params(a: &[f64], b: &[f64], tol: f64, what: &str) {
+    assert_eq!(a.len(), b.len(), "{what}: {a:?} vs {b:?}");
+    for (x, y) in a.iter().zip(b) {
+        assert_near(*x, *y, tol, what);
+    }
+}
+
 /// Golden-section search for an extremum of `f` on `[a, b]` (`sign = 1` for a maximum, `-1` for
 /// a minimum).
 fn golden(f: impl Fn(f64) -> f64, mut a: f64, mut b: f64, sign: f64) -> f64 {
@@ -514,11 +523,12 @@ mod analysis {
                 let (a, b) = (kappa(&c, t), kappa(&q, t));
                 assert_near(a, b, 1e-9 * a.abs().max(1e-6), "elevated κ");
             }
-            let (ec, eq) = (c.curvature_extrema(), q.curvature_extrema());
-            assert_eq!(ec.len(), eq.len(), "{ec:?} {eq:?}");
-            for (a, b) in ec.iter().zip(&eq) {
-                assert_near(*a, *b, 1e-8, "elevated extrema");
-            }
+            assert_same_params(
+                &c.curvature_extrema(),
+                &q.curvature_extrema(),
+                1e-8,
+                "elevated extrema",
+            );
             let (mc, mq) = (c.max_curvature(), q.max_curvature());
             assert_near(mc.value, mq.value, 1e-9 * mc.value, "elevated max");
         }
@@ -658,10 +668,7 @@ mod analysis {
                 (q.curvature_extrema(), s.curvature_extrema()),
                 (c.curvature_extrema(), sc.curvature_extrema()),
             ] {
-                assert_eq!(e2d.len(), e3d.len(), "{e2d:?} vs {e3d:?}");
-                for (a, b) in e2d.iter().zip(&e3d) {
-                    assert_near(*a, *b, 1e-7, "planar extrema");
-                }
+                assert_same_params(&e2d, &e3d, 1e-7, "planar extrema");
             }
             let (m2, m3) = (q.max_curvature(), s.max_curvature());
             assert_near(m2.value, m3.value, 1e-9 * m2.value, "planar max");
@@ -706,10 +713,7 @@ mod analysis {
                 (c.curvature_extrema(), tc.curvature_extrema()),
                 (q.curvature_extrema(), tq.curvature_extrema()),
             ] {
-                assert_eq!(e.len(), te.len());
-                for (x, y) in e.iter().zip(&te) {
-                    assert_near(*x, *y, 1e-8, "extrema invariance");
-                }
+                assert_same_params(&e, &te, 1e-8, "extrema invariance");
             }
             let (m, tm) = (q.max_curvature(), tq.max_curvature());
             assert_near(tm.value * scale, m.value, 1e-9 * m.value, "max invariance");
@@ -1121,12 +1125,9 @@ mod analysis {
                 "location",
             );
             let (e2, e3) = (c.curvature_extrema(), s.curvature_extrema());
-            assert_eq!(e2.len(), e3.len(), "ε = {e}: {e2:?} vs {e3:?}");
             // The extrema are ≈ ε/8 apart; their positions carry the same relative uncertainty.
             let ttol = (e / 8.0 * tol).max(1e-12);
-            for (a, b) in e2.iter().zip(&e3) {
-                assert_near(*a, *b, ttol, "2D vs 3D extrema");
-            }
+            assert_same_params(&e2, &e3, ttol, &format!("ε = {e}: 2D vs 3D extrema"));
             // Dense sampling in shrinking windows around the spike finds nothing higher.
             let t = m2.params[0];
             for w in [1e-2, 1e-4, 1e-6, 1e-8] {
