@@ -47,6 +47,8 @@
 //!
 //! - [`Spline`], [`Solver`]: κ-curves ([`Scheme::Kappa`]) and cubic εκ-curves
 //!   ([`Scheme::EkCubic`]), open and closed; [`Solver3`] for 3D points.
+//! - [`BSpline`], [`BSpline3`]: uniform cubic B-splines through given points, open (relaxed)
+//!   and closed (periodic), with their exact maximum curvature.
 //! - [`analysis`]: curvature of Bézier segments of degree 1–4 in 2D and 3D, curvature
 //!   extrema, maxima of paths, continuity at joints, curvature combs.
 //! - `render` (feature `render`): deterministic SVG/PNG pictures and golden-image comparison.
@@ -75,6 +77,7 @@
 
 pub mod analysis;
 mod basis;
+mod bspline;
 #[cfg(feature = "serde")]
 mod design;
 mod designs;
@@ -93,6 +96,7 @@ mod spline;
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
 
+pub use bspline::{BSpline, BSpline3, BSplineCurvatureMax, BSplinePathElements, BSplinePoint};
 #[cfg(feature = "serde")]
 pub use design::{Design, DesignCurve};
 pub use designs::{builtin_design, BUILTIN_DESIGNS};

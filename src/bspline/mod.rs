@@ -1,0 +1,657 @@
+//! Uniform cubic B-splines through given points, open (relaxed) and closed (periodic), in 2D
+//! and 3D, with their exact maximum curvature (seed paper 002).
+//!
+//! # Interpolation
+//!
+//! Given points `s_0 … s_n`, the control points `b_0 … b_n` of the uniform cubic B-spline
+//! through them solve (seed 002 §2)
+//!
+//! ```text
+//! b_{k−1} + 4 b_k + b_{k+1} = 6 s_k
+//! ```
+//!
+//! - **relaxed** (open) for `k = 1 … n−1` with `b_0 = s_0`, `b_n = s_n` (Theorem 2.1): the
+//!   curvature is zero at both ends;
+//! - **periodic** (closed) for `k = 0 … n` with indices mod `n + 1` (seed 002 eqs. 8–9,
+//!   Theorem 2.2): C2 everywhere, `n + 1` segments.
+//!
+//! Segment `k` is the cubic Bézier `s_k, (2b_k + b_{k+1})/3, (b_k + 2b_{k+1})/3, s_{k+1}` on
+//! the global parameter interval `[k, k+1]` (seed 002 eqs. 4–5 and 11, with 0-based indices),
+//! so the whole curve is parameterized by `t ∈ [0, n]` (open) or `t ∈ [0, n + 1]` (closed)
+//! and passes through `s_k` at `t = k`.
+//!
+//! The systems are solved in `O(n)` in a normalized frame (the points' bounding box centred at
+//! the origin, largest side 1), so coordinates near the limits of `f64` do not overflow:
+//! Thomas' algorithm for the open case and the factorization
+//! `(1/α)(I + αS)(I + αS⁻¹)`, `α = 2 − √3`, of the circulant for the closed one. The
+//! paper's closed forms, with `β_ℓ = ((2+√3)^{ℓ+1} − (2−√3)^{ℓ+1})/(2√3)`, cost `O(n²)` and
+//! are kept only as a test oracle. Measured in `tests/bspline.rs`: while they work they agree
+//! with the solver to about 2e-15 of the points' magnitude, but `(2+√3)^{ℓ+1}` overflows `f64`
+//! at `ℓ = 538`. With coordinates of size 1 the periodic form is not finite from 539 points
+//! on, and the relaxed one is silently wrong at 540 points (a term `β_ℓ/β_{n−1}` becomes 0)
+//! and not finite from 541; larger coordinates overflow the sums `Σ β_ℓ s_j` a few points
+//! earlier (536 points for coordinates of size 600).
+//!
+//! # Maximum curvature
+//!
+//! [`BSpline::max_curvature`] is the paper's Algorithm 1 for both dimensions, through
+//! [`analysis`](crate::analysis): on every segment the real roots of the stationarity
+//! polynomial of the curvature (2D: `a·u = 0` and `(v·v)(a′·u) − 3(a·u)(v·a) = 0`, seed 002
+//! eqs. 15–16; 3D: seed 002 eq. 13, degree ≤ 7) plus both segment ends are the candidates;
+//! the maximum of |κ| is returned with **every** global parameter where it is attained, ties
+//! counted within a relative [`BSplineCurvatureMax::TIE_TOLERANCE`] (1e-12): symmetric data
+//! has several equal maxima. [`BSpline::curvature`] is Algorithm 2, the curvature at any
+//! global parameter.
+//!
+//! # Input
+//!
+//! Errors are typed ([`Error`]): too few points (an open spline needs 2, a closed one 3),
+//! NaN or infinite coordinates, points whose extent overflows `f64`
+//! ([`Error::ExtentOverflow`], also when the control points would), and **repeated
+//! consecutive points** ([`Error::RepeatedPoint`], within 1e-12 of the drawing size, and the
+//! last and first points of a closed spline): with a uniform parameterization a zero chord
+//! does not give a corner but a small loop through the repeated point, which is never what
+//! the repetition meant. Collinear points are accepted; a closed spline through them runs
+//! back and forth along the line.
+
+use core::ops::Range;
+
+use kurbo::{
+    BezPath, CubicBez, ParamCurveArclen, ParamCurveArea, ParamCurveExtrema, PathEl, Point, Rect,
+    Shape,
+};
+
+use crate::analysis::{CurvatureAnalysis, SpaceBez};
+use crate::linalg::solve_symmetric_toeplitz;
+use crate::{Coords, Error, Point3};
+
+/// Two consecutive points closer than this fraction of the drawing size (the larger side of
+/// their bounding box) are repeated.
+const COINCIDENT: f64 = 1e-12;
+
+/// The diagonal of the interpolation system `b_{k−1} + 4 b_k + b_{k+1} = 6 s_k`.
+const DIAGONAL: f64 = 4.0;
+
+/// A uniform cubic B-spline through given points: relaxed (open, zero end curvature) or
+/// periodic (closed, C2 everywhere). See the [module docs](self) for the equations.
+///
+/// `P` is [`kurbo::Point`] (2D, the default) or [`Point3`] ([`BSpline3`]).
+///
+/// ```
+/// use kappa::BSpline;
+/// use kurbo::{ParamCurve, Point};
+///
+/// let points = [
+///     Point::new(0.0, 0.0),
+///     Point::new(1.0, 1.0),
+///     Point::new(2.0, 0.0),
+///     Point::new(3.0, 1.0),
+/// ];
+/// let open = BSpline::new(&points, false)?;
+/// assert_eq!(open.segment_count(), 3);
+/// assert_eq!(open.param_range(), 0.0..3.0);
+/// assert!((open.eval(2.0) - points[2]).hypot() < 1e-15);
+/// // Zero curvature at the ends of a relaxed spline.
+/// assert!(open.curvature(0.0).abs() < 1e-12);
+/// // The exact kurbo segments.
+/// let seg = open.segment(1).unwrap();
+/// assert_eq!(seg.eval(1.0), points[2]);
+///
+/// let max = BSpline::new(&points, true)?.max_curvature();
+/// assert!(max.value > 0.0 && !max.params.is_empty());
+/// # Ok::<(), kappa::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct BSpline<P = Point> {
+    closed: bool,
+    /// The interpolated points `s_k`.
+    points: Vec<P>,
+    /// The control points `b_k`.
+    control: Vec<P>,
+    /// Centre of the points' bounding box.
+    center: P,
+    /// Larger side of the points' bounding box (positive).
+    size: f64,
+}
+
+/// A uniform cubic B-spline through 3D points; its segments are cubic [`SpaceBez`].
+pub type BSpline3 = BSpline<Point3>;
+
+/// The maximum of |κ| over a [`BSpline`] and every global parameter where it is attained.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct BSplineCurvatureMax {
+    /// The maximum of |κ| (2D curvature is signed; this is its absolute value).
+    /// [`f64::INFINITY`] if |κ| is unbounded next to a cusp (`r′ = 0`).
+    pub value: f64,
+    /// Every global parameter where `|κ| ≥ (1 − TIE_TOLERANCE) · value`, increasing, each
+    /// once: in `[0, n]` for an open spline and in `[0, n + 1)` for a closed one (a maximum at
+    /// the closing point is reported at 0). At a cusp these are the cusp parameters.
+    pub params: Vec<f64>,
+}
+
+impl BSplineCurvatureMax {
+    /// Relative tolerance within which two values of |κ| count as the same maximum.
+    ///
+    /// Mirror-symmetric data gives mirror-symmetric splines, whose maxima agree to within a
+    /// few units in the last place (measured on the paper's symmetric examples: below 1e-14
+    /// relative), far inside this tolerance.
+    pub const TIE_TOLERANCE: f64 = 1e-12;
+}
+
+mod sealed {
+    use super::*;
+
+    /// Dimension-specific operations of [`BSplinePoint`].
+    pub trait Sealed: Copy + core::fmt::Debug + PartialEq {
+        /// The exact segment type.
+        type Seg: CurvatureAnalysis;
+
+        /// The control points (user coordinates), the centre and the size of the frame.
+        fn interpolate(points: &[Self], closed: bool) -> Result<(Vec<Self>, Self, f64), Error>;
+
+        /// `wa a + wb b`.
+        fn combine(a: Self, wa: f64, b: Self, wb: f64) -> Self;
+
+        /// `(self − center) / size`.
+        fn to_local(self, center: Self, size: f64) -> Self;
+
+        /// The cubic segment with these control points.
+        fn segment(p: [Self; 4]) -> Self::Seg;
+
+        /// Arc length of a segment.
+        fn arclen(seg: &Self::Seg, accuracy: f64) -> f64;
+
+        /// A point with every coordinate NaN.
+        fn nan() -> Self;
+    }
+}
+
+/// The point types a [`BSpline`] can interpolate: [`kurbo::Point`] and [`Point3`]. Sealed.
+pub trait BSplinePoint: sealed::Sealed {}
+
+impl BSplinePoint for Point {}
+impl BSplinePoint for Point3 {}
+
+macro_rules! impl_sealed {
+    ($p:ty, $d:literal, $seg:ty, |$s:ident| $make:expr, |$g:ident, $acc:ident| $arclen:expr) => {
+        impl sealed::Sealed for $p {
+            type Seg = $seg;
+
+            fn interpolate(points: &[Self], closed: bool) -> Result<(Vec<Self>, Self, f64), Error> {
+                interpolate::<$p, $d>(points, closed)
+            }
+
+            #[inline]
+            fn combine(a: Self, wa: f64, b: Self, wb: f64) -> Self {
+                let (a, b) = (a.coords(), b.coords());
+                <$p>::from_coords(core::array::from_fn(|k| wa * a[k] + wb * b[k]))
+            }
+
+            #[inline]
+            fn to_local(self, center: Self, size: f64) -> Self {
+                let (p, c) = (self.coords(), center.coords());
+                <$p>::from_coords(core::array::from_fn(|k| (p[k] - c[k]) / size))
+            }
+
+            #[inline]
+            fn segment($s: [Self; 4]) -> $seg {
+                $make
+            }
+
+            fn arclen($g: &$seg, $acc: f64) -> f64 {
+                $arclen
+            }
+
+            fn nan() -> Self {
+                <$p>::from_coords([f64::NAN; $d])
+            }
+        }
+    };
+}
+
+impl_sealed!(
+    Point,
+    2,
+    CubicBez,
+    |s| CubicBez::new(s[0], s[1], s[2], s[3]),
+    |g, accuracy| g.arclen(accuracy)
+);
+impl_sealed!(
+    Point3,
+    3,
+    SpaceBez,
+    |s| SpaceBez::cubic(s[0], s[1], s[2], s[3]),
+    |g, accuracy| g.arclen(accuracy)
+);
+
+/// Validate `points`, solve for the control points in the normalized frame and map them back.
+fn interpolate<P: Coords<D>, const D: usize>(
+    points: &[P],
+    closed: bool,
+) -> Result<(Vec<P>, P, f64), Error> {
+    let m = points.len();
+    let (kind, needed) = if closed {
+        ("a closed B-spline", 3)
+    } else {
+        ("an open B-spline", 2)
+    };
+    if m < needed {
+        return Err(Error::TooFewPoints {
+            kind,
+            needed,
+            got: m,
+        });
+    }
+    let mut lo = [f64::INFINITY; D];
+    let mut hi = [f64::NEG_INFINITY; D];
+    for (index, p) in points.iter().enumerate() {
+        let c = p.coords();
+        if !c.iter().all(|x| x.is_finite()) {
+            return Err(Error::NonFinitePoint { index });
+        }
+        for k in 0..D {
+            lo[k] = lo[k].min(c[k]);
+            hi[k] = hi[k].max(c[k]);
+        }
+    }
+    let size = (0..D).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
+    if !size.is_finite() {
+        return Err(Error::ExtentOverflow);
+    }
+    if size == 0.0 {
+        return Err(Error::RepeatedPoint { index: 0, next: 1 });
+    }
+    // Halves first: (lo + hi) / 2 can overflow where lo/2 + hi/2 does not.
+    let center: [f64; D] = core::array::from_fn(|k| 0.5 * lo[k] + 0.5 * hi[k]);
+    let inv = 1.0 / size;
+    // A subnormal size has no finite reciprocal: divide instead.
+    let local = |p: P| -> [f64; D] {
+        let c = p.coords();
+        if inv.is_finite() {
+            core::array::from_fn(|k| (c[k] - center[k]) * inv)
+        } else {
+            core::array::from_fn(|k| (c[k] - center[k]) / size)
+        }
+    };
+    let coincident2 = COINCIDENT * COINCIDENT;
+    let repeated = |a: [f64; D], b: [f64; D]| {
+        (0..D).map(|k| (b[k] - a[k]) * (b[k] - a[k])).sum::<f64>() <= coincident2
+    };
+    // Right-hand sides 6 s_k (local), checking for repeated points on the way.
+    let first = local(points[0]);
+    let last = local(points[m - 1]);
+    let mut d: Vec<[f64; D]> = Vec::with_capacity(m);
+    if closed {
+        d.push(first.map(|x| 6.0 * x));
+    }
+    let mut prev = first;
+    for (i, &p) in points.iter().enumerate().skip(1) {
+        let s = local(p);
+        if repeated(prev, s) {
+            return Err(Error::RepeatedPoint {
+                index: i - 1,
+                next: i,
+            });
+        }
+        // Open: rows for the interior points only.
+        if closed || i + 1 < m {
+            d.push(s.map(|x| 6.0 * x));
+        }
+        prev = s;
+    }
+    if closed {
+        if repeated(last, first) {
+            return Err(Error::RepeatedPoint {
+                index: m - 1,
+                next: 0,
+            });
+        }
+    } else {
+        // b_0 = s_0 and b_n = s_n move to the right-hand side.
+        if let Some(r) = d.first_mut() {
+            for k in 0..D {
+                r[k] -= first[k];
+            }
+        }
+        if let Some(r) = d.last_mut() {
+            for k in 0..D {
+                r[k] -= last[k];
+            }
+        }
+    }
+    let solved = solve_symmetric_toeplitz(DIAGONAL, &mut d, closed);
+    debug_assert!(solved, "the diagonal is a valid constant");
+    let user = |x: [f64; D]| P::from_coords(core::array::from_fn(|k| x[k] * size + center[k]));
+    let mut control = Vec::with_capacity(m);
+    if !closed {
+        control.push(points[0]);
+    }
+    let mut finite = true;
+    for &x in &d {
+        let b = user(x);
+        finite &= b.coords().iter().all(|v| v.is_finite());
+        control.push(b);
+    }
+    if !closed {
+        control.push(points[m - 1]);
+    }
+    if !finite {
+        return Err(Error::ExtentOverflow);
+    }
+    Ok((control, P::from_coords(center), size))
+}
+
+impl<P: BSplinePoint> BSpline<P> {
+    /// The uniform cubic B-spline through `points`: relaxed if `closed` is false, periodic if
+    /// it is true. `O(n)`.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::TooFewPoints`] (fewer than 2 points open, 3 closed),
+    /// [`Error::NonFinitePoint`], [`Error::RepeatedPoint`] (consecutive points within 1e-12
+    /// of the drawing size, including last → first when closed) and
+    /// [`Error::ExtentOverflow`] (the extent of the points, or a control point, is not a
+    /// finite `f64`).
+    pub fn new(points: &[P], closed: bool) -> Result<Self, Error> {
+        let (control, center, size) = P::interpolate(points, closed)?;
+        Ok(BSpline {
+            closed,
+            points: points.to_vec(),
+            control,
+            center,
+            size,
+        })
+    }
+
+    /// The relaxed (open) spline through `points`: `new(points, false)`.
+    pub fn relaxed(points: &[P]) -> Result<Self, Error> {
+        Self::new(points, false)
+    }
+
+    /// The periodic (closed) spline through `points`: `new(points, true)`.
+    pub fn periodic(points: &[P]) -> Result<Self, Error> {
+        Self::new(points, true)
+    }
+
+    /// Whether the spline is closed (periodic).
+    pub fn is_closed(&self) -> bool {
+        self.closed
+    }
+
+    /// The interpolated points `s_k`; the spline passes through `s_k` at `t = k`.
+    pub fn points(&self) -> &[P] {
+        &self.points
+    }
+
+    /// The B-spline control points `b_k` (as many as points; `b_0 = s_0` and `b_n = s_n` for
+    /// an open spline).
+    pub fn control_points(&self) -> &[P] {
+        &self.control
+    }
+
+    /// The number of segments: `n` for `n + 1` points open, `n + 1` closed.
+    pub fn segment_count(&self) -> usize {
+        if self.closed {
+            self.points.len()
+        } else {
+            self.points.len() - 1
+        }
+    }
+
+    /// The range of the global parameter: `0..n` open, `0..n+1` closed (the segment count).
+    pub fn param_range(&self) -> Range<f64> {
+        0.0..self.segment_count() as f64
+    }
+
+    /// The four Bézier control points of segment `i`,
+    /// `s_i, (2b_i + b_{i+1})/3, (b_i + 2b_{i+1})/3, s_{i+1}` (indices mod the point count
+    /// when closed), or `None` if there is no such segment.
+    pub fn segment_points(&self, i: usize) -> Option<[P; 4]> {
+        if i >= self.segment_count() {
+            return None;
+        }
+        let j = (i + 1) % self.points.len();
+        let (b0, b1) = (self.control[i], self.control[j]);
+        Some([
+            self.points[i],
+            P::combine(b0, 2.0 / 3.0, b1, 1.0 / 3.0),
+            P::combine(b0, 1.0 / 3.0, b1, 2.0 / 3.0),
+            self.points[j],
+        ])
+    }
+
+    /// Segment `i` in the normalized frame (centre at the origin, drawing size 1), where its
+    /// curvature is computed: the curvature in user units is this one's divided by `size`.
+    fn local_segment(&self, i: usize) -> P::Seg {
+        let pts = self.segment_points(i).expect("segment index in range");
+        P::segment(pts.map(|p| p.to_local(self.center, self.size)))
+    }
+
+    /// The segment containing the global parameter `t` and the parameter in `[0, 1]` on it
+    /// (seed 002, Algorithm 2 steps 1–5): segment `⌊t⌋`, except that the end `t = n` of an
+    /// open spline belongs to the last segment. `t` outside the parameter range is clamped
+    /// (open) or wrapped around (closed). NaN maps to segment 0 at NaN.
+    pub fn locate(&self, t: f64) -> (usize, f64) {
+        let count = self.segment_count();
+        let end = count as f64;
+        let t = if self.closed {
+            let w = t.rem_euclid(end);
+            // rem_euclid can round up to `end` itself for tiny negative t.
+            if w >= end {
+                0.0
+            } else {
+                w
+            }
+        } else {
+            t.clamp(0.0, end)
+        };
+        if t.is_nan() {
+            return (0, t);
+        }
+        let i = (t.floor() as usize).min(count - 1);
+        (i, t - i as f64)
+    }
+
+    /// The point at global parameter `t` (see [`locate`](Self::locate); NaN gives NaN).
+    pub fn eval(&self, t: f64) -> P {
+        let (i, u) = self.locate(t);
+        if u.is_nan() {
+            return P::nan();
+        }
+        let [p0, p1, p2, p3] = self.segment_points(i).expect("located segment");
+        let v = 1.0 - u;
+        let a = P::combine(p0, v, p1, u);
+        let b = P::combine(p1, v, p2, u);
+        let c = P::combine(p2, v, p3, u);
+        let ab = P::combine(a, v, b, u);
+        let bc = P::combine(b, v, c, u);
+        P::combine(ab, v, bc, u)
+    }
+
+    /// The curvature at global parameter `t` (seed 002, Algorithm 2): signed in 2D (positive
+    /// for left turns, `(x′y″ − y′x″)/|r′|³`), `|r′ × r″|/|r′|³` in 3D. Computed in the
+    /// normalized frame, so it does not overflow for huge or tiny coordinates. NaN for a NaN
+    /// `t`; 0 where `r′ = 0`.
+    pub fn curvature(&self, t: f64) -> f64 {
+        let (i, u) = self.locate(t);
+        if u.is_nan() {
+            return f64::NAN;
+        }
+        CurvatureAnalysis::curvature(&self.local_segment(i), u) / self.size
+    }
+
+    /// The maximum of |κ| and every global parameter where it is attained (seed 002,
+    /// Algorithm 1, through [`CurvatureAnalysis::max_curvature`] on each segment: roots of the
+    /// stationarity polynomial and both ends). Ties within
+    /// [`BSplineCurvatureMax::TIE_TOLERANCE`] are all reported.
+    pub fn max_curvature(&self) -> BSplineCurvatureMax {
+        let tie = 1.0 - BSplineCurvatureMax::TIE_TOLERANCE;
+        let mut best = 0.0f64;
+        // (global parameter, |κ| there) of the candidates that may still tie with `best`.
+        let mut cands: Vec<(f64, f64)> = Vec::new();
+        for i in 0..self.segment_count() {
+            let seg = self.local_segment(i);
+            let m = seg.max_curvature();
+            if m.value < best * tie {
+                continue;
+            }
+            if m.value > best {
+                best = m.value;
+                cands.retain(|c| c.1 >= best * tie);
+            }
+            for &u in &m.params {
+                // The analysis reports parameters within its own (looser) tolerance of the
+                // segment's maximum: re-measure each one. At a cusp, or where r′ = 0 with a
+                // finite limit, the value is the analysis' limit, not the 0 of `curvature`.
+                let k = CurvatureAnalysis::curvature(&seg, u).abs();
+                let v = if m.value.is_infinite() || (k == 0.0 && m.value > 0.0) {
+                    m.value
+                } else {
+                    k
+                };
+                cands.push((i as f64 + u, v));
+            }
+        }
+        let end = self.segment_count() as f64;
+        let mut params: Vec<f64> = cands
+            .iter()
+            .filter(|c| c.1 >= best * tie)
+            .map(|c| if self.closed && c.0 >= end { 0.0 } else { c.0 })
+            .collect();
+        params.sort_by(f64::total_cmp);
+        // A joint is reported by both of its segments, as (i, 1) and (i + 1, 0).
+        params.dedup_by(|a, b| (*a - *b).abs() <= PARAM_DEDUP);
+        BSplineCurvatureMax {
+            value: best / self.size,
+            params,
+        }
+    }
+
+    /// The arc length, to within about `accuracy` per segment. Measured in the normalized
+    /// frame, so it does not overflow for huge or tiny coordinates.
+    pub fn arclen(&self, accuracy: f64) -> f64 {
+        let local_accuracy = accuracy / self.size;
+        let local: f64 = (0..self.segment_count())
+            .map(|i| P::arclen(&self.local_segment(i), local_accuracy))
+            .sum();
+        local * self.size
+    }
+}
+
+/// Global parameters closer than this are the same point of the curve.
+const PARAM_DEDUP: f64 = 1e-12;
+
+impl BSpline<Point> {
+    /// Segment `i` as an exact kurbo cubic, or `None` if there is no such segment.
+    pub fn segment(&self, i: usize) -> Option<CubicBez> {
+        self.segment_points(i)
+            .map(|[p0, p1, p2, p3]| CubicBez::new(p0, p1, p2, p3))
+    }
+
+    /// The segments in order along the curve.
+    pub fn segments(&self) -> impl Iterator<Item = CubicBez> + '_ {
+        (0..self.segment_count()).filter_map(|i| self.segment(i))
+    }
+
+    /// The spline as a kurbo path of exact `CubicBez` segments, closed with `ClosePath` when
+    /// the spline is closed.
+    pub fn to_bezpath(&self) -> BezPath {
+        self.path_elements(0.0).collect()
+    }
+}
+
+impl BSpline<Point3> {
+    /// Segment `i` as an exact cubic [`SpaceBez`], or `None` if there is no such segment.
+    pub fn segment(&self, i: usize) -> Option<SpaceBez> {
+        self.segment_points(i)
+            .map(|[p0, p1, p2, p3]| SpaceBez::cubic(p0, p1, p2, p3))
+    }
+
+    /// The segments in order along the curve.
+    pub fn segments(&self) -> impl Iterator<Item = SpaceBez> + '_ {
+        (0..self.segment_count()).filter_map(|i| self.segment(i))
+    }
+
+    /// The spline drawn through `project` as a kurbo path, segment by segment (control point
+    /// by control point). Exact when `project` is affine, e.g. an orthographic view.
+    pub fn to_bezpath_projected(&self, project: impl Fn(Point3) -> Point) -> BezPath {
+        let mut path = BezPath::new();
+        for (i, [p0, p1, p2, p3]) in (0..self.segment_count())
+            .filter_map(|i| self.segment_points(i))
+            .enumerate()
+        {
+            if i == 0 {
+                path.move_to(project(p0));
+            }
+            path.curve_to(project(p1), project(p2), project(p3));
+        }
+        if self.closed {
+            path.close_path();
+        }
+        path
+    }
+}
+
+/// The path elements of a 2D [`BSpline`]: `MoveTo`, one `CurveTo` per segment, and
+/// `ClosePath` for a closed spline.
+#[derive(Clone, Debug)]
+pub struct BSplinePathElements<'a> {
+    spline: &'a BSpline<Point>,
+    /// The next element: 0 is the `MoveTo`, `i + 1` is segment `i`'s `CurveTo`.
+    next: usize,
+}
+
+impl Iterator for BSplinePathElements<'_> {
+    type Item = PathEl;
+
+    fn next(&mut self) -> Option<PathEl> {
+        let count = self.spline.segment_count();
+        let k = self.next;
+        self.next += 1;
+        match k {
+            0 => Some(PathEl::MoveTo(self.spline.points[0])),
+            k if k <= count => {
+                let [_, p1, p2, p3] = self.spline.segment_points(k - 1)?;
+                Some(PathEl::CurveTo(p1, p2, p3))
+            }
+            k if k == count + 1 && self.spline.closed => Some(PathEl::ClosePath),
+            _ => {
+                self.next = k;
+                None
+            }
+        }
+    }
+}
+
+/// A 2D spline is a kurbo [`Shape`] made of its exact cubic segments.
+impl Shape for BSpline<Point> {
+    type PathElementsIter<'iter> = BSplinePathElements<'iter>;
+
+    fn path_elements(&self, _tolerance: f64) -> BSplinePathElements<'_> {
+        BSplinePathElements {
+            spline: self,
+            next: 0,
+        }
+    }
+
+    /// The signed area, as kurbo's `BezPath::area` of [`to_bezpath`](Self::to_bezpath)
+    /// (positive for anticlockwise curves in y-up coordinates).
+    fn area(&self) -> f64 {
+        self.segments().map(|s| s.signed_area()).sum()
+    }
+
+    fn perimeter(&self, accuracy: f64) -> f64 {
+        self.arclen(accuracy)
+    }
+
+    fn winding(&self, pt: Point) -> i32 {
+        self.to_bezpath().winding(pt)
+    }
+
+    fn bounding_box(&self) -> Rect {
+        self.segments()
+            .map(|s| ParamCurveExtrema::bounding_box(&s))
+            .reduce(|a, b| a.union(b))
+            .unwrap_or_default()
+    }
+}
