@@ -387,19 +387,57 @@ fn thomas<const D: usize>(
     true
 }
 
-/// Largest number of Thomas multipliers of [`solve_symmetric_toeplitz`] computed before they
+/// Largest number of Thomas multipliers of [`solve_symmetric_toeplitz_into`] computed before they
 /// are taken as settled. For `q ≥ 3` they converge to `α = (q − √(q² − 4))/2` like `α^{2i}`
 /// (`α² ≤ 0.146`), i.e. to the last bit within about 20 steps.
 const TOEPLITZ_PREFIX: usize = 64;
 
 /// Terms of the geometric series `Σ (−α)^j d_{k−j}` that start the cyclic recursions of
-/// [`solve_symmetric_toeplitz`]: `α^j` is below 2⁻⁶³ (far below rounding) from `j = 34` on for
+/// [`solve_symmetric_toeplitz_into`]: `α^j` is below 2⁻⁶³ (far below rounding) from `j = 34` on for
 /// `q ≥ 4` (`α ≤ 0.268`) and from `j = 46` on for `q = 3` (`α = 0.382`).
 const TOEPLITZ_SERIES: usize = 48;
 
+/// Vectors the streaming solver [`solve_symmetric_toeplitz_into`] works on: anything with
+/// addition and scaling (coordinate arrays, points used as vectors).
+pub(crate) trait Lin: Copy {
+    /// The zero vector.
+    const ZERO: Self;
+    /// `self + s · other`.
+    fn add_scaled(self, other: Self, s: f64) -> Self;
+    /// `s · self`.
+    fn scaled(self, s: f64) -> Self;
+}
+
+impl<const D: usize> Lin for [f64; D] {
+    const ZERO: Self = [0.0; D];
+    #[inline]
+    fn add_scaled(self, other: Self, s: f64) -> Self {
+        core::array::from_fn(|k| self[k] + s * other[k])
+    }
+    #[inline]
+    fn scaled(self, s: f64) -> Self {
+        self.map(|x| s * x)
+    }
+}
+
+/// Solve the symmetric Toeplitz tridiagonal system `x_{i−1} + q x_i + x_{i+1} = d_i` in
+/// place; see [`solve_symmetric_toeplitz_into`].
+#[cfg(test)]
+pub(crate) fn solve_symmetric_toeplitz<T: Lin>(q: f64, d: &mut [T], cyclic: bool) -> bool {
+    let rhs = d.to_vec();
+    let mut out = Vec::with_capacity(d.len());
+    if !solve_symmetric_toeplitz_into(q, cyclic, d.len(), |i| rhs[i], &mut out, |x| x) {
+        return false;
+    }
+    d.copy_from_slice(&out);
+    true
+}
+
 /// Solve the symmetric Toeplitz tridiagonal system `x_{i−1} + q x_i + x_{i+1} = d_i`
 /// (`i = 0 … n−1`, with `x_{−1} = x_n = 0`, or cyclically with `x_{−1} = x_{n−1}`,
-/// `x_n = x_0`) in place, for `q ≥ 3`, in `O(n)` without buffers.
+/// `x_n = x_0`) for `q ≥ 3`, in `O(n)` and in two sweeps, without buffers: the right-hand
+/// side is read through `rhs(i)` during the first sweep, and `finish(x_i)` is appended to
+/// `out` (after what it already holds) during the second.
 ///
 /// - Open: Thomas' algorithm. Its multipliers `m_0 = 1/q`, `m_i = 1/(q − m_{i−1})` do not
 ///   depend on `d` and settle to a constant after a few steps, so only a short prefix is kept
@@ -412,59 +450,56 @@ const TOEPLITZ_SERIES: usize = 48;
 ///   by `α` per step, so the solve is backward stable. Also correct for n = 1 and 2, where the
 ///   shifted neighbours coincide.
 ///
-/// Returns `false` (leaving `d` unspecified) if `q < 3` or `q` is not finite.
-pub(crate) fn solve_symmetric_toeplitz<const D: usize>(
+/// `rhs` is called once per index in increasing order, except that the cyclic case first
+/// reads up to [`TOEPLITZ_SERIES`] entries from the end. Returns `false` (leaving `out`
+/// unspecified) if `q < 3` or `q` is not finite.
+pub(crate) fn solve_symmetric_toeplitz_into<T: Lin>(
     q: f64,
-    d: &mut [[f64; D]],
     cyclic: bool,
+    n: usize,
+    rhs: impl Fn(usize) -> T,
+    out: &mut Vec<T>,
+    mut finish: impl FnMut(T) -> T,
 ) -> bool {
     if !(q >= 3.0 && q.is_finite()) {
         return false;
     }
-    let n = d.len();
     if n == 0 {
         return true;
     }
+    let base = out.len();
+    out.reserve(n);
     if cyclic {
         // (q − √(q² − 4))/2 without its cancellation for large q.
         let alpha = 2.0 / (q + (q * q - 4.0).sqrt());
         let terms = n.min(TOEPLITZ_SERIES);
         let denom = 1.0 - (-alpha).powi(n.min(i32::MAX as usize) as i32);
         // Forward: w_i + α w_{i−1} = α d_i, periodic.
-        let mut w0 = [0.0; D];
+        let mut series = T::ZERO;
         let mut f = 1.0;
         for j in 0..terms {
-            let dj = d[(n - j) % n];
-            for k in 0..D {
-                w0[k] += f * dj[k];
-            }
+            series = series.add_scaled(rhs((n - j) % n), f);
             f *= -alpha;
         }
-        let mut prev = w0.map(|v| alpha * v / denom);
-        d[0] = prev;
-        for di in d.iter_mut().skip(1) {
-            for k in 0..D {
-                prev[k] = alpha * (di[k] - prev[k]);
-            }
-            *di = prev;
+        let mut prev = series.scaled(alpha / denom);
+        out.push(prev);
+        for i in 1..n {
+            prev = rhs(i).add_scaled(prev, -1.0).scaled(alpha);
+            out.push(prev);
         }
         // Backward: x_i + α x_{i+1} = w_i, periodic.
-        let mut x_last = [0.0; D];
+        let w = &mut out[base..];
+        let mut series = T::ZERO;
         let mut f = 1.0;
         for j in 0..terms {
-            let wj = d[(n - 1 + j) % n];
-            for k in 0..D {
-                x_last[k] += f * wj[k];
-            }
+            series = series.add_scaled(w[(n - 1 + j) % n], f);
             f *= -alpha;
         }
-        let mut next = x_last.map(|v| v / denom);
-        d[n - 1] = next;
-        for di in d.iter_mut().rev().skip(1) {
-            for k in 0..D {
-                next[k] = di[k] - alpha * next[k];
-            }
-            *di = next;
+        let mut next = series.scaled(1.0 / denom);
+        w[n - 1] = finish(next);
+        for wi in w[..n - 1].iter_mut().rev() {
+            next = wi.add_scaled(next, -alpha);
+            *wi = finish(next);
         }
         return true;
     }
@@ -481,21 +516,17 @@ pub(crate) fn solve_symmetric_toeplitz<const D: usize>(
     }
     let last = settled.min(n) - 1;
     let mult = |i: usize| m[i.min(last)];
-    let mut prev = [0.0; D];
-    for (i, di) in d.iter_mut().enumerate() {
-        let mi = mult(i);
-        for k in 0..D {
-            prev[k] = (di[k] - prev[k]) * mi;
-        }
-        *di = prev;
+    let mut prev = T::ZERO;
+    for i in 0..n {
+        prev = rhs(i).add_scaled(prev, -1.0).scaled(mult(i));
+        out.push(prev);
     }
-    let mut next = d[n - 1];
+    let y = &mut out[base..];
+    let mut next = y[n - 1];
+    y[n - 1] = finish(next);
     for i in (0..n - 1).rev() {
-        let mi = mult(i);
-        for k in 0..D {
-            next[k] = d[i][k] - mi * next[k];
-        }
-        d[i] = next;
+        next = y[i].add_scaled(next, -mult(i));
+        y[i] = finish(next);
     }
     true
 }

@@ -1235,3 +1235,31 @@ proptest! {
         check_random(&s, closed, &BSpline3::new(&pts, closed).unwrap())?;
     }
 }
+
+#[test]
+fn set_points_reinterpolates_in_place() {
+    let mut s = BSpline::new(&t1(), false).unwrap();
+    s.set_points(&t3(), true).unwrap();
+    assert_eq!(s, BSpline::new(&t3(), true).unwrap());
+    // On error the spline is unchanged.
+    let before = s.clone();
+    let bad = pts2(&[(0.0, 0.0), (1.0, 1.0), (1.0, 1.0)]);
+    assert_eq!(
+        s.set_points(&bad, false),
+        Err(Error::RepeatedPoint { index: 1, next: 2 })
+    );
+    assert_eq!(s, before);
+    let edge = pts2(&[
+        (f64::MAX * 0.5, 0.0),
+        (f64::MAX, 1.0),
+        (f64::MAX * 0.5, 2.0),
+    ]);
+    assert_eq!(s.set_points(&edge, false), Err(Error::ExtentOverflow));
+    assert_eq!(s, before);
+    let mut s3 = BSpline3::new(&e1(), false).unwrap();
+    s3.set_points(&e3(), true).unwrap();
+    assert_eq!(
+        s3.max_curvature(),
+        BSpline3::new(&e3(), true).unwrap().max_curvature()
+    );
+}

@@ -47,7 +47,8 @@
 //!
 //! Errors are typed ([`Error`]): too few points (an open spline needs 2, a closed one 3),
 //! NaN or infinite coordinates, points whose extent overflows `f64`
-//! ([`Error::ExtentOverflow`], also when the control points would), and **repeated
+//! ([`Error::ExtentOverflow`], also when the control points could: they stay within 1.5
+//! extents of the centre of the points' bounding box), and **repeated
 //! consecutive points** ([`Error::RepeatedPoint`], within 1e-12 of the drawing size, and the
 //! last and first points of a closed spline): with a uniform parameterization a zero chord
 //! does not give a corner but a small loop through the repeated point, which is never what
@@ -62,7 +63,7 @@ use kurbo::{
 };
 
 use crate::analysis::{CurvatureAnalysis, SpaceBez};
-use crate::linalg::solve_symmetric_toeplitz;
+use crate::linalg::{solve_symmetric_toeplitz_into, Lin};
 use crate::{Coords, Error, Point3};
 
 /// Two consecutive points closer than this fraction of the drawing size (the larger side of
@@ -71,6 +72,10 @@ const COINCIDENT: f64 = 1e-12;
 
 /// The diagonal of the interpolation system `b_{k−1} + 4 b_k + b_{k+1} = 6 s_k`.
 const DIAGONAL: f64 = 4.0;
+
+/// The control points lie within this many drawing sizes of the centre of the points'
+/// bounding box (3/2, see `interpolate`, plus a margin for rounding).
+const CONTROL_REACH: f64 = 1.5 + 1e-9;
 
 /// A uniform cubic B-spline through given points: relaxed (open, zero end curvature) or
 /// periodic (closed, C2 everywhere). See the [module docs](self) for the equations.
@@ -146,8 +151,14 @@ mod sealed {
         /// The exact segment type.
         type Seg: CurvatureAnalysis;
 
-        /// The control points (user coordinates), the centre and the size of the frame.
-        fn interpolate(points: &[Self], closed: bool) -> Result<(Vec<Self>, Self, f64), Error>;
+        /// Validate `points`, then replace `control` by the control points (user
+        /// coordinates); returns the centre and the size of the normalized frame. `control`
+        /// is untouched on error.
+        fn interpolate(
+            points: &[Self],
+            closed: bool,
+            control: &mut Vec<Self>,
+        ) -> Result<(Self, f64), Error>;
 
         /// `wa a + wb b`.
         fn combine(a: Self, wa: f64, b: Self, wb: f64) -> Self;
@@ -163,6 +174,10 @@ mod sealed {
 
         /// A point with every coordinate NaN.
         fn nan() -> Self;
+
+        /// Cheap bounds of |κ| on the cubic with these control points, split into `pieces`
+        /// equal parts.
+        fn curvature_bounds(p: [Self; 4], pieces: usize) -> CurvatureBounds;
     }
 }
 
@@ -177,8 +192,12 @@ macro_rules! impl_sealed {
         impl sealed::Sealed for $p {
             type Seg = $seg;
 
-            fn interpolate(points: &[Self], closed: bool) -> Result<(Vec<Self>, Self, f64), Error> {
-                interpolate::<$p, $d>(points, closed)
+            fn interpolate(
+                points: &[Self],
+                closed: bool,
+                control: &mut Vec<Self>,
+            ) -> Result<(Self, f64), Error> {
+                interpolate::<$p, $d>(points, closed, control)
             }
 
             #[inline]
@@ -205,6 +224,10 @@ macro_rules! impl_sealed {
             fn nan() -> Self {
                 <$p>::from_coords([f64::NAN; $d])
             }
+
+            fn curvature_bounds(p: [Self; 4], pieces: usize) -> CurvatureBounds {
+                curvature_bounds_split::<$d>(p.map(|q| q.coords()), pieces)
+            }
         }
     };
 }
@@ -224,11 +247,168 @@ impl_sealed!(
     |g, accuracy| g.arclen(accuracy)
 );
 
+impl Lin for Point {
+    const ZERO: Self = Point::ZERO;
+    #[inline]
+    fn add_scaled(self, o: Self, s: f64) -> Self {
+        Point::new(self.x + s * o.x, self.y + s * o.y)
+    }
+    #[inline]
+    fn scaled(self, s: f64) -> Self {
+        Point::new(s * self.x, s * self.y)
+    }
+}
+
+impl Lin for Point3 {
+    const ZERO: Self = Point3::ORIGIN;
+    #[inline]
+    fn add_scaled(self, o: Self, s: f64) -> Self {
+        Point3::new(self.x + s * o.x, self.y + s * o.y, self.z + s * o.z)
+    }
+    #[inline]
+    fn scaled(self, s: f64) -> Self {
+        Point3::new(s * self.x, s * self.y, s * self.z)
+    }
+}
+
+/// Relative margin on [`CurvatureBounds::upper`] for rounding: a segment is skipped only if
+/// its bound, enlarged by this, is below the maximum found.
+const BOUND_MARGIN: f64 = 1e-9;
+
+/// Pieces into which a segment that survives the first pruning is split for tighter bounds.
+const BOUND_PIECES: usize = 8;
+
+/// [`CurvatureBounds`] of a cubic split into `pieces` equal parts (|κ| does not depend on the
+/// parameterization, so each piece, reparameterized to `[0, 1]`, bounds its part).
+fn curvature_bounds_split<const D: usize>(p: [[f64; D]; 4], pieces: usize) -> CurvatureBounds {
+    if pieces <= 1 {
+        return curvature_bounds(p);
+    }
+    // Power form r(t) = a + b t + c t² + d t³ for the piece end points and tangents.
+    let a = p[0];
+    let b: [f64; D] = core::array::from_fn(|k| 3.0 * (p[1][k] - p[0][k]));
+    let c: [f64; D] = core::array::from_fn(|k| 3.0 * (p[2][k] - 2.0 * p[1][k] + p[0][k]));
+    let d: [f64; D] = core::array::from_fn(|k| p[3][k] - 3.0 * (p[2][k] - p[1][k]) - p[0][k]);
+    let at = |t: f64| -> ([f64; D], [f64; D]) {
+        let r = core::array::from_fn(|k| a[k] + t * (b[k] + t * (c[k] + t * d[k])));
+        let v = core::array::from_fn(|k| b[k] + t * (2.0 * c[k] + t * 3.0 * d[k]));
+        (r, v)
+    };
+    let h = 1.0 / pieces as f64;
+    let mut out = CurvatureBounds {
+        at_ends: 0.0,
+        upper: 0.0,
+    };
+    let (mut r0, mut v0) = (p[0], b);
+    for j in 1..=pieces {
+        let (r1, v1) = if j == pieces {
+            (p[3], core::array::from_fn(|k| 3.0 * (p[3][k] - p[2][k])))
+        } else {
+            at(j as f64 * h)
+        };
+        let q = [
+            r0,
+            core::array::from_fn(|k| r0[k] + h / 3.0 * v0[k]),
+            core::array::from_fn(|k| r1[k] - h / 3.0 * v1[k]),
+            r1,
+        ];
+        let piece = curvature_bounds(q);
+        out.at_ends = out.at_ends.max(piece.at_ends);
+        out.upper = out.upper.max(piece.upper);
+        (r0, v0) = (r1, v1);
+    }
+    out
+}
+
+/// Bounds of |κ| on one cubic segment, from its control points alone.
+#[derive(Clone, Copy, Debug)]
+pub struct CurvatureBounds {
+    /// `max(|κ(0)|, |κ(1)|)`: attained, so a lower bound of the spline's maximum.
+    at_ends: f64,
+    /// `≥ |κ(t)|` for all `t ∈ [0, 1]` (up to rounding); infinite when `r′` may vanish.
+    upper: f64,
+}
+
+/// [`CurvatureBounds`] of the cubic with control points `p` (any dimension).
+///
+/// With the hodograph `r′ = Σ B²_i h_i`, `h_i = 3(p_{i+1} − p_i)`, and `r″ = Σ B¹_j g_j`,
+/// `g_j = 2(h_{j+1} − h_j)`, the product `r′ × r″` is the cubic Bernstein polynomial with
+/// coefficients `h₀×g₀, (2h₁×g₀ + h₀×g₁)/3, (h₂×g₀ + 2h₁×g₁)/3, h₂×g₁`, so `|r′ × r″|` is at most
+/// the largest of their norms (convex hull property). `|r′|` is at least `min_i h_i · û` for
+/// any unit `û` (the hodograph lies in the convex hull of the `h_i`); the best of
+/// `û ∈ {h₀, h₁, h₂, h₀ + h₂}` normalized is taken. Hence
+/// `|κ| ≤ max_k |c_k| / (min |r′|)³`, tight to first order in the segment's variation.
+fn curvature_bounds<const D: usize>(p: [[f64; D]; 4]) -> CurvatureBounds {
+    let h: [[f64; D]; 3] =
+        core::array::from_fn(|i| core::array::from_fn(|k| 3.0 * (p[i + 1][k] - p[i][k])));
+    let g: [[f64; D]; 2] =
+        core::array::from_fn(|j| core::array::from_fn(|k| 2.0 * (h[j + 1][k] - h[j][k])));
+    let dot = |a: [f64; D], b: [f64; D]| (0..D).map(|k| a[k] * b[k]).sum::<f64>();
+    // |a × b|² = |a|²|b|² − (a·b)² loses accuracy for nearly parallel vectors; the explicit
+    // components do not.
+    let cross = |a: [f64; D], b: [f64; D]| -> [f64; 3] {
+        let c = |v: [f64; D], k: usize| if k < D { v[k] } else { 0.0 };
+        [
+            c(a, 1) * c(b, 2) - c(a, 2) * c(b, 1),
+            c(a, 2) * c(b, 0) - c(a, 0) * c(b, 2),
+            c(a, 0) * c(b, 1) - c(a, 1) * c(b, 0),
+        ]
+    };
+    let norm3 = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let c0 = cross(h[0], g[0]);
+    let c3 = cross(h[2], g[1]);
+    let (h1g0, h0g1, h2g0, h1g1) = (
+        cross(h[1], g[0]),
+        cross(h[0], g[1]),
+        cross(h[2], g[0]),
+        cross(h[1], g[1]),
+    );
+    let c1: [f64; 3] = core::array::from_fn(|k| (2.0 * h1g0[k] + h0g1[k]) / 3.0);
+    let c2: [f64; 3] = core::array::from_fn(|k| (h2g0[k] + 2.0 * h1g1[k]) / 3.0);
+    let num = norm3(c0).max(norm3(c1)).max(norm3(c2)).max(norm3(c3));
+    let kappa_end = |c: [f64; 3], v: [f64; D]| {
+        let l = dot(v, v).sqrt();
+        let k = norm3(c) / (l * l * l);
+        if k.is_finite() {
+            k
+        } else {
+            0.0
+        }
+    };
+    let at_ends = kappa_end(c0, h[0]).max(kappa_end(c3, h[2]));
+    let sum: [f64; D] = core::array::from_fn(|k| h[0][k] + h[2][k]);
+    let mut speed = 0.0f64;
+    for u in [h[0], h[1], h[2], sum] {
+        let len = dot(u, u).sqrt();
+        if len > 0.0 {
+            let low = h
+                .iter()
+                .map(|&hi| dot(hi, u) / len)
+                .fold(f64::INFINITY, f64::min);
+            speed = speed.max(low);
+        }
+    }
+    let upper = if speed > 0.0 {
+        num / (speed * speed * speed)
+    } else {
+        f64::INFINITY
+    };
+    CurvatureBounds {
+        at_ends,
+        upper: if upper.is_nan() { f64::INFINITY } else { upper },
+    }
+}
+
 /// Validate `points`, solve for the control points in the normalized frame and map them back.
-fn interpolate<P: Coords<D>, const D: usize>(
+///
+/// Four sweeps over the points: bounds, repeated points, and the two of the solver, which
+/// reads the right-hand sides straight from the points and writes the control points in user
+/// coordinates (the solver's vectors are points of the normalized frame until then).
+fn interpolate<P: Coords<D> + Lin, const D: usize>(
     points: &[P],
     closed: bool,
-) -> Result<(Vec<P>, P, f64), Error> {
+    control: &mut Vec<P>,
+) -> Result<(P, f64), Error> {
     let m = points.len();
     let (kind, needed) = if closed {
         ("a closed B-spline", 3)
@@ -255,7 +435,13 @@ fn interpolate<P: Coords<D>, const D: usize>(
         }
     }
     let size = (0..D).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
-    if !size.is_finite() {
+    // In the normalized frame |s_k| ≤ ½ per coordinate, and diagonal dominance gives
+    // |b|∞ ≤ (6 · ½ + 2 |b|∞) / 4, i.e. |b|∞ ≤ 3/2: the control points stay within
+    // |centre| + 3/2 · size, which must be finite.
+    let reach = (0..D).fold(0.0f64, |r, k| {
+        r.max((0.5 * lo[k] + 0.5 * hi[k]).abs() + CONTROL_REACH * size)
+    });
+    if !(size.is_finite() && reach.is_finite()) {
         return Err(Error::ExtentOverflow);
     }
     if size == 0.0 {
@@ -263,8 +449,8 @@ fn interpolate<P: Coords<D>, const D: usize>(
     }
     // Halves first: (lo + hi) / 2 can overflow where lo/2 + hi/2 does not.
     let center: [f64; D] = core::array::from_fn(|k| 0.5 * lo[k] + 0.5 * hi[k]);
-    let inv = 1.0 / size;
     // A subnormal size has no finite reciprocal: divide instead.
+    let inv = 1.0 / size;
     let local = |p: P| -> [f64; D] {
         let c = p.coords();
         if inv.is_finite() {
@@ -277,14 +463,7 @@ fn interpolate<P: Coords<D>, const D: usize>(
     let repeated = |a: [f64; D], b: [f64; D]| {
         (0..D).map(|k| (b[k] - a[k]) * (b[k] - a[k])).sum::<f64>() <= coincident2
     };
-    // Right-hand sides 6 s_k (local), checking for repeated points on the way.
-    let first = local(points[0]);
-    let last = local(points[m - 1]);
-    let mut d: Vec<[f64; D]> = Vec::with_capacity(m);
-    if closed {
-        d.push(first.map(|x| 6.0 * x));
-    }
-    let mut prev = first;
+    let mut prev = local(points[0]);
     for (i, &p) in points.iter().enumerate().skip(1) {
         let s = local(p);
         if repeated(prev, s) {
@@ -293,52 +472,47 @@ fn interpolate<P: Coords<D>, const D: usize>(
                 next: i,
             });
         }
-        // Open: rows for the interior points only.
-        if closed || i + 1 < m {
-            d.push(s.map(|x| 6.0 * x));
-        }
         prev = s;
     }
-    if closed {
-        if repeated(last, first) {
-            return Err(Error::RepeatedPoint {
-                index: m - 1,
-                next: 0,
-            });
-        }
-    } else {
-        // b_0 = s_0 and b_n = s_n move to the right-hand side.
-        if let Some(r) = d.first_mut() {
-            for k in 0..D {
-                r[k] -= first[k];
-            }
-        }
-        if let Some(r) = d.last_mut() {
-            for k in 0..D {
-                r[k] -= last[k];
-            }
-        }
+    if closed && repeated(prev, local(points[0])) {
+        return Err(Error::RepeatedPoint {
+            index: m - 1,
+            next: 0,
+        });
     }
-    let solved = solve_symmetric_toeplitz(DIAGONAL, &mut d, closed);
-    debug_assert!(solved, "the diagonal is a valid constant");
-    let user = |x: [f64; D]| P::from_coords(core::array::from_fn(|k| x[k] * size + center[k]));
-    let mut control = Vec::with_capacity(m);
+    // Unknowns: all b_k (closed), or b_1 … b_{n−1} with b_0 = s_0, b_n = s_n moved to the
+    // right-hand side (open).
+    let (offset, unknowns) = if closed { (0, m) } else { (1, m - 2) };
+    let (first, last) = (local(points[0]), local(points[m - 1]));
+    let rhs = |i: usize| -> P {
+        let mut d = local(points[i + offset]).map(|x| 6.0 * x);
+        if !closed {
+            for k in 0..D {
+                if i == 0 {
+                    d[k] -= first[k];
+                }
+                if i + 1 == unknowns {
+                    d[k] -= last[k];
+                }
+            }
+        }
+        P::from_coords(d)
+    };
+    let to_user = |x: P| {
+        let c = x.coords();
+        P::from_coords(core::array::from_fn(|k| c[k] * size + center[k]))
+    };
+    control.clear();
+    control.reserve(m);
     if !closed {
         control.push(points[0]);
     }
-    let mut finite = true;
-    for &x in &d {
-        let b = user(x);
-        finite &= b.coords().iter().all(|v| v.is_finite());
-        control.push(b);
-    }
+    let solved = solve_symmetric_toeplitz_into(DIAGONAL, closed, unknowns, rhs, control, to_user);
+    debug_assert!(solved, "the diagonal is a valid constant");
     if !closed {
         control.push(points[m - 1]);
     }
-    if !finite {
-        return Err(Error::ExtentOverflow);
-    }
-    Ok((control, P::from_coords(center), size))
+    Ok((P::from_coords(center), size))
 }
 
 impl<P: BSplinePoint> BSpline<P> {
@@ -350,10 +524,11 @@ impl<P: BSplinePoint> BSpline<P> {
     /// [`Error::TooFewPoints`] (fewer than 2 points open, 3 closed),
     /// [`Error::NonFinitePoint`], [`Error::RepeatedPoint`] (consecutive points within 1e-12
     /// of the drawing size, including last → first when closed) and
-    /// [`Error::ExtentOverflow`] (the extent of the points, or a control point, is not a
-    /// finite `f64`).
+    /// [`Error::ExtentOverflow`] (the extent of the points is not a finite `f64`, or the
+    /// control points could overflow: a coordinate within 1.5 extents of `±f64::MAX`).
     pub fn new(points: &[P], closed: bool) -> Result<Self, Error> {
-        let (control, center, size) = P::interpolate(points, closed)?;
+        let mut control = Vec::new();
+        let (center, size) = P::interpolate(points, closed, &mut control)?;
         Ok(BSpline {
             closed,
             points: points.to_vec(),
@@ -361,6 +536,19 @@ impl<P: BSplinePoint> BSpline<P> {
             center,
             size,
         })
+    }
+
+    /// Re-interpolate new points in place, reusing the spline's memory: the same as
+    /// [`new`](Self::new) without allocating when the point count does not grow (for
+    /// interactive editing, or many splines in a row). On error the spline is unchanged.
+    pub fn set_points(&mut self, points: &[P], closed: bool) -> Result<(), Error> {
+        let (center, size) = P::interpolate(points, closed, &mut self.control)?;
+        self.points.clear();
+        self.points.extend_from_slice(points);
+        self.closed = closed;
+        self.center = center;
+        self.size = size;
+        Ok(())
     }
 
     /// The relaxed (open) spline through `points`: `new(points, false)`.
@@ -423,8 +611,13 @@ impl<P: BSplinePoint> BSpline<P> {
     /// Segment `i` in the normalized frame (centre at the origin, drawing size 1), where its
     /// curvature is computed: the curvature in user units is this one's divided by `size`.
     fn local_segment(&self, i: usize) -> P::Seg {
+        P::segment(self.local_points(i))
+    }
+
+    /// The control points of segment `i` in the normalized frame.
+    fn local_points(&self, i: usize) -> [P; 4] {
         let pts = self.segment_points(i).expect("segment index in range");
-        P::segment(pts.map(|p| p.to_local(self.center, self.size)))
+        pts.map(|p| p.to_local(self.center, self.size))
     }
 
     /// The segment containing the global parameter `t` and the parameter in `[0, 1]` on it
@@ -486,11 +679,36 @@ impl<P: BSplinePoint> BSpline<P> {
     /// [`BSplineCurvatureMax::TIE_TOLERANCE`] are all reported.
     pub fn max_curvature(&self) -> BSplineCurvatureMax {
         let tie = 1.0 - BSplineCurvatureMax::TIE_TOLERANCE;
+        let count = self.segment_count();
+        // Cheap bounds first: |κ| at every joint is a lower bound of the maximum, and a
+        // segment whose upper bound stays below it cannot attain it. The rest are analysed in
+        // decreasing order of their bound, until the bound drops below the best value found.
+        let mut bounds: Vec<(usize, f64)> = Vec::with_capacity(count);
+        let mut lower = 0.0f64;
+        for i in 0..count {
+            let b = P::curvature_bounds(self.local_points(i), 1);
+            lower = lower.max(b.at_ends);
+            bounds.push((i, b.upper));
+        }
+        // The bounds are exact up to rounding; the margin absorbs it.
+        let prunable = |upper: f64, best: f64| upper * (1.0 + BOUND_MARGIN) < best * tie;
+        bounds.retain(|b| !prunable(b.1, lower));
+        // Tighter bounds (and more attained values) for the segments left, from pieces.
+        for b in &mut bounds {
+            let r = P::curvature_bounds(self.local_points(b.0), BOUND_PIECES);
+            lower = lower.max(r.at_ends);
+            b.1 = r.upper;
+        }
+        bounds.retain(|b| !prunable(b.1, lower));
+        bounds.sort_unstable_by(|a, b| b.1.total_cmp(&a.1));
         let mut best = 0.0f64;
         // (global parameter, |κ| there) of the candidates that may still tie with `best`.
         let mut cands: Vec<(f64, f64)> = Vec::new();
-        for i in 0..self.segment_count() {
-            let seg = self.local_segment(i);
+        for &(i, upper) in &bounds {
+            if prunable(upper, best) {
+                break;
+            }
+            let seg = P::segment(self.local_points(i));
             let m = seg.max_curvature();
             if m.value < best * tie {
                 continue;
@@ -512,7 +730,7 @@ impl<P: BSplinePoint> BSpline<P> {
                 cands.push((i as f64 + u, v));
             }
         }
-        let end = self.segment_count() as f64;
+        let end = count as f64;
         let mut params: Vec<f64> = cands
             .iter()
             .filter(|c| c.1 >= best * tie)
@@ -653,5 +871,107 @@ impl Shape for BSpline<Point> {
             .map(|s| ParamCurveExtrema::bounding_box(&s))
             .reduce(|a, b| a.union(b))
             .unwrap_or_default()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// xorshift64*, for reproducible random control points.
+    fn rng(state: &mut u64) -> f64 {
+        *state ^= *state >> 12;
+        *state ^= *state << 25;
+        *state ^= *state >> 27;
+        (state.wrapping_mul(0x2545_f491_4f6c_dd1d) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// |κ| of the cubic at `t`, from its derivatives.
+    fn kappa<const D: usize>(p: [[f64; D]; 4], t: f64) -> f64 {
+        let s = 1.0 - t;
+        let d1: [f64; 3] = core::array::from_fn(|k| {
+            if k >= D {
+                return 0.0;
+            }
+            3.0 * (s * s * (p[1][k] - p[0][k])
+                + 2.0 * s * t * (p[2][k] - p[1][k])
+                + t * t * (p[3][k] - p[2][k]))
+        });
+        let d2: [f64; 3] = core::array::from_fn(|k| {
+            if k >= D {
+                return 0.0;
+            }
+            6.0 * (s * (p[2][k] - 2.0 * p[1][k] + p[0][k])
+                + t * (p[3][k] - 2.0 * p[2][k] + p[1][k]))
+        });
+        let c = [
+            d1[1] * d2[2] - d1[2] * d2[1],
+            d1[2] * d2[0] - d1[0] * d2[2],
+            d1[0] * d2[1] - d1[1] * d2[0],
+        ];
+        let n = (d1[0] * d1[0] + d1[1] * d1[1] + d1[2] * d1[2]).sqrt();
+        (c[0] * c[0] + c[1] * c[1] + c[2] * c[2]).sqrt() / (n * n * n)
+    }
+
+    fn check_bounds<const D: usize>(seed: &mut u64) -> (usize, usize) {
+        let mut finite = 0;
+        let mut tight = 0;
+        for _ in 0..2000 {
+            let p: [[f64; D]; 4] = core::array::from_fn(|_| core::array::from_fn(|_| rng(seed)));
+            let sampled = (0..=2000)
+                .map(|j| kappa(p, j as f64 / 2000.0))
+                .fold(0.0f64, f64::max);
+            let ends = kappa(p, 0.0).max(kappa(p, 1.0));
+            for pieces in [1, 8] {
+                let b = curvature_bounds_split(p, pieces);
+                assert!(
+                    b.upper >= sampled * (1.0 - 1e-12),
+                    "{p:?}: {} < {sampled}",
+                    b.upper
+                );
+                assert!(b.at_ends <= sampled * (1.0 + 1e-12) && b.at_ends >= ends * (1.0 - 1e-12));
+                if pieces == 8 && b.upper.is_finite() {
+                    finite += 1;
+                    tight += usize::from(b.upper < 2.0 * sampled);
+                }
+            }
+        }
+        (finite, tight)
+    }
+
+    #[test]
+    fn curvature_bounds_bound_sampled_curvature() {
+        let mut seed = 0x5eed;
+        let (finite, tight) = check_bounds::<2>(&mut seed);
+        // Random control points often make loops (no finite bound); where the bound is finite
+        // it is usually within a factor 2.
+        assert!(finite > 500 && tight > finite / 2, "{finite} {tight}");
+        let (finite, tight) = check_bounds::<3>(&mut seed);
+        assert!(finite > 500 && tight > finite / 2, "{finite} {tight}");
+    }
+
+    #[test]
+    fn toeplitz_solver_accepts_points() {
+        // The interpolation solves on points directly.
+        let pts = [
+            Point::new(0.0, 6.0),
+            Point::new(6.0, 0.0),
+            Point::new(6.0, 6.0),
+        ];
+        let mut out = Vec::new();
+        assert!(solve_symmetric_toeplitz_into(
+            4.0,
+            true,
+            3,
+            |i| pts[i],
+            &mut out,
+            |x| x
+        ));
+        for i in 0..3 {
+            let lhs = out[(i + 2) % 3]
+                .add_scaled(out[i], 4.0)
+                .add_scaled(out[(i + 1) % 3], 1.0);
+            assert!((lhs - pts[i]).hypot() < 1e-14);
+        }
     }
 }
