@@ -96,7 +96,9 @@ mod spline;
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
 
-pub use bspline::{BSpline, BSpline3, BSplineCurvatureMax, BSplinePathElements, BSplinePoint};
+pub use bspline::{
+    BSpline, BSpline3, BSplineCurvatureMax, BSplinePathElements, BSplinePoint, OrthographicView,
+};
 #[cfg(feature = "serde")]
 pub use design::{Design, DesignCurve};
 pub use designs::{builtin_design, BUILTIN_DESIGNS};

@@ -1263,3 +1263,214 @@ fn set_points_reinterpolates_in_place() {
         BSpline3::new(&e3(), true).unwrap().max_curvature()
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// Golden images: the paper's Figs. 8 (T3, T4) and 11 (E3) with the maximum marked.
+// ---------------------------------------------------------------------------------------------
+
+#[cfg(feature = "render")]
+mod golden {
+    use super::*;
+    use kappa::render::golden::{check_golden, Tolerance};
+    use kappa::render::Scene;
+    use kappa::OrthographicView;
+    use std::path::Path;
+
+    /// Side of the golden images in pixels.
+    const SIDE: u32 = 400;
+
+    fn check(name: &str, scene: Scene) {
+        let image = scene.render().unwrap();
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("tests/golden/{name}.png"));
+        if let Err(e) = check_golden(&path, &image, Tolerance::DEFAULT) {
+            panic!("{e}");
+        }
+    }
+
+    #[test]
+    fn golden_bspline_t3() {
+        check(
+            "bspline-t3",
+            BSpline::new(&t3(), true).unwrap().scene(SIDE, SIDE),
+        );
+    }
+
+    #[test]
+    fn golden_bspline_t4() {
+        check(
+            "bspline-t4",
+            BSpline::new(&t4(), true).unwrap().scene(SIDE, SIDE),
+        );
+    }
+
+    #[test]
+    fn golden_bspline_e3_trefoil() {
+        // Seen from 55° above the knot's plane, with the trefoil it samples in thin blue.
+        let view = OrthographicView::new((-60f64).to_radians(), 55f64.to_radians());
+        let knot = BSpline3::new(&e3(), true).unwrap();
+        let mut trefoil = kurbo::BezPath::new();
+        for i in 0..=400 {
+            let t = i as f64 / 400.0 * std::f64::consts::TAU;
+            let r = 1.0 + 0.3 * (3.0 * t).cos();
+            let p = view.project(Point3::new(
+                r * (2.0 * t).cos(),
+                r * (2.0 * t).sin(),
+                0.35 * (3.0 * t).sin(),
+            ));
+            if i == 0 {
+                trefoil.move_to(p);
+            } else {
+                trefoil.line_to(p);
+            }
+        }
+        let style = kappa::render::Style::new(kappa::render::Color::BLUE, 1.0);
+        check(
+            "bspline-e3",
+            knot.scene(view, SIDE, SIDE).path(&trefoil, style),
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
+// The command line: `kappa bspline`.
+// ---------------------------------------------------------------------------------------------
+
+#[cfg(feature = "cli")]
+mod cli {
+    use super::*;
+    use serde_json::Value;
+    use std::io::Write;
+    use std::process::{Command, Output, Stdio};
+
+    fn kappa(args: &[&str], stdin: &str) -> Output {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_kappa"))
+            .arg("bspline")
+            .args(args)
+            .stdin(Stdio::piped())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .expect("the kappa binary runs");
+        let _ = child.stdin.take().unwrap().write_all(stdin.as_bytes());
+        child.wait_with_output().unwrap()
+    }
+
+    fn json(args: &[&str], stdin: &str) -> Value {
+        let out = kappa(args, stdin);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(out.status.success() && err.is_empty(), "{err}");
+        serde_json::from_slice(&out.stdout).expect("stdout is JSON")
+    }
+
+    /// Exit code 2, one `kappa: error:` line, empty stdout; returns the line.
+    fn error(stdin: &str) -> String {
+        let out = kappa(&[], stdin);
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(out.stdout.is_empty());
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.starts_with("kappa: error: "), "{err}");
+        err
+    }
+
+    fn floats(v: &Value) -> Vec<f64> {
+        v.as_array()
+            .unwrap()
+            .iter()
+            .map(|x| x.as_f64().unwrap())
+            .collect()
+    }
+
+    fn input(points: &[Vec<f64>], closed: bool) -> String {
+        serde_json::json!({ "points": points, "closed": closed }).to_string()
+    }
+
+    #[test]
+    fn cli_2d_output_matches_the_library() {
+        let pts = t4();
+        let raw: Vec<Vec<f64>> = pts.iter().map(|p| vec![p.x, p.y]).collect();
+        let out = json(&[], &input(&raw, true));
+        let s = BSpline::new(&pts, true).unwrap();
+        let control = out["control_points"].as_array().unwrap();
+        assert_eq!(control.len(), 9);
+        // serde_json's float parsing may differ from Rust's in the last bit.
+        let near = |a: Vec<f64>, b: Point| (Point::new(a[0], a[1]) - b).hypot() < 1e-14;
+        for (c, b) in control.iter().zip(s.control_points()) {
+            assert!(near(floats(c), *b));
+        }
+        let segs = out["segments"].as_array().unwrap();
+        assert_eq!(segs.len(), 9);
+        for (i, seg) in segs.iter().enumerate() {
+            let p = seg["points"].as_array().unwrap();
+            assert_eq!(p.len(), 4);
+            let want = s.segment_points(i).unwrap();
+            for (q, w) in p.iter().zip(want) {
+                assert!(near(floats(q), w));
+            }
+        }
+        let max = &out["max_curvature"];
+        assert!((max["value"].as_f64().unwrap() - pinned("T4").value).abs() < 1e-10);
+        let params = floats(&max["params"]);
+        assert!(params.len() == 1 && (params[0] - 4.5).abs() < 1e-12);
+        let at = floats(&max["points"][0]);
+        assert!(near(at, s.eval(4.5)));
+        let length = out["length"].as_f64().unwrap();
+        assert!((length - s.arclen(1e-12)).abs() < 1e-8);
+        // "closed" defaults to true.
+        let default = json(&[], &serde_json::json!({ "points": raw }).to_string());
+        assert_eq!(default, out);
+    }
+
+    #[test]
+    fn cli_3d_open_and_all_maxima() {
+        let raw: Vec<Vec<f64>> = e1().iter().map(|p| vec![p.x, p.y, p.z]).collect();
+        let out = json(&[], &input(&raw, false));
+        assert_eq!(out["segments"].as_array().unwrap().len(), 6);
+        let first = floats(&out["control_points"][0]);
+        assert!((0..3).all(|k| (first[k] - raw[0][k]).abs() < 1e-15));
+        let max = &out["max_curvature"];
+        assert!((max["value"].as_f64().unwrap() - pinned("E1").value).abs() < 1e-10);
+        assert_eq!(floats(&max["points"][0]).len(), 3);
+        // T5's four equal maxima all come out.
+        let raw: Vec<Vec<f64>> = t5().iter().map(|p| vec![p.x, p.y]).collect();
+        let out = json(&[], &input(&raw, true));
+        assert_eq!(out["max_curvature"]["params"].as_array().unwrap().len(), 4);
+        assert_eq!(out["max_curvature"]["points"].as_array().unwrap().len(), 4);
+    }
+
+    #[test]
+    fn cli_pictures() {
+        let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("bspline-cli");
+        std::fs::create_dir_all(&dir).unwrap();
+        let (svg, png) = (dir.join("e3.svg"), dir.join("e3.png"));
+        let raw: Vec<Vec<f64>> = e3().iter().map(|p| vec![p.x, p.y, p.z]).collect();
+        let args = [
+            "--svg",
+            svg.to_str().unwrap(),
+            "--png",
+            png.to_str().unwrap(),
+            "--size",
+            "200",
+            "--elevation",
+            "55",
+        ];
+        json(&args, &input(&raw, true));
+        assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));
+        let image = kappa::render::Pixmap::load_png(&png).unwrap();
+        assert_eq!((image.width(), image.height()), (200, 200));
+    }
+
+    #[test]
+    fn cli_errors() {
+        assert!(error(r#"{"points": [[0, 0], [0, 0], [1, 1]]}"#).contains("coincide"));
+        assert!(error(r#"{"points": [[0, 0], [1, 1]]}"#).contains("too few points"));
+        assert!(error(r#"{"points": [[0, 0], [1, 1, 2]]}"#).contains("coordinates"));
+        assert!(error(r#"{"points": [[0]]}"#).contains("coordinates"));
+        assert!(error(r#"{"points": [[0, null], [1, 1]]}"#).contains("null"));
+        assert!(error(r#"{"points": [[0, 0], [1, 1]], "closed": "yes"}"#).contains("JSON"));
+        assert!(error(r#"{"points": [[0, 0], [1, 1]], "degree": 3}"#).contains("JSON"));
+        assert!(error("not json").contains("JSON"));
+        let wide = r#"{"points": [[-1.5e308, 0], [0, 1], [1.5e308, 0]], "closed": false}"#;
+        assert!(error(wide).contains("largest finite number"));
+    }
+}

@@ -4,6 +4,7 @@
 //! subcommand and turns failures into exit code 2 with one `kappa: error: …` line on stderr.
 
 mod bench;
+mod bspline;
 mod builtin;
 mod curve;
 mod diff;
@@ -28,6 +29,7 @@ use failure::EXIT_ERROR;
         starting with 'kappa: error:'; nothing is then written to stdout.",
     after_help = "Examples:\n  \
         echo '{\"points\": [[0,0],[100,0],[50,80]]}' | kappa curve\n  \
+        echo '{\"points\": [[0,0,0],[1,2,1],[3,1,0]], \"closed\": false}' | kappa bspline\n  \
         kappa curve --builtin bear --scheme ek-cubic --shape 0.85 --png bear.png\n  \
         kappa diff expected.png actual.png --out diff.png\n  \
         kappa bench --repeat 11\n  \
@@ -41,6 +43,7 @@ struct Cli {
 #[derive(Debug, Subcommand)]
 enum Command {
     Curve(curve::CurveArgs),
+    Bspline(bspline::BSplineArgs),
     Diff(diff::DiffArgs),
     Bench(bench::BenchArgs),
     Gallery(gallery::GalleryArgs),
@@ -54,6 +57,7 @@ fn main() -> ExitCode {
     failure::install_panic_hook();
     let result = std::panic::catch_unwind(|| match &cli.command {
         Command::Curve(args) => curve::run(args),
+        Command::Bspline(args) => bspline::run(args),
         Command::Diff(args) => diff::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Gallery(args) => gallery::run(args),
