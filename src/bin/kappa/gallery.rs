@@ -6,7 +6,8 @@ use std::process::ExitCode;
 use clap::Args;
 use kappa::gallery::{design_scene, paper_scenes, FIGURE_GAP, PAPER_VARIANTS};
 use kappa::render::{hstack, Pixmap};
-use kappa::Scheme;
+use kappa::{BSpline, BSpline3, OrthographicView, Point3, Scheme};
+use kurbo::Point;
 
 use crate::builtin::{self, PAPER_DRAWINGS};
 use crate::failure::{self, Failure, Result};
@@ -27,7 +28,9 @@ const OVERVIEW_COLUMNS: usize = 3;
         <name>.png          bear, elephant and bird as a κ-curve and as εκ-curves with \
         a = 0.75, 0.85, 0.95 side by side\n  \
         <name>-<variant>.svg  one SVG per panel (variants kappa, ek-0.75, ek-0.85, ek-0.95)\n  \
-        drawings.png        all nine drawings of the εκ paper as κ-curves, in a 3 × 3 grid\n\
+        drawings.png        all nine drawings of the εκ paper as κ-curves, in a 3 × 3 grid\n  \
+        bsplines.png        uniform cubic B-splines of the B-spline paper (T4, and the trefoil \
+        E3 in an orthographic view) with their maximum curvature marked\n\
         Prints the files written, one per line.",
     after_help = "Examples:\n  kappa gallery\n  kappa gallery --out docs/gallery"
 )]
@@ -88,7 +91,54 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
         rows.push(hstack(&panels, FIGURE_GAP).map_err(Failure::new)?);
     }
     write_png(&dir.join("drawings.png"), &vstack(&rows, FIGURE_GAP)?)?;
+    write_png(&dir.join("bsplines.png"), &bsplines()?)?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// The B-spline paper's (seed 002 §4) symmetric closed curve T4.
+const BSPLINE_T4: [(f64, f64); 9] = [
+    (1.0, 4.0),
+    (0.6, 2.0),
+    (2.0, 0.4),
+    (3.4, 1.0),
+    (2.6, 2.8),
+    (2.2, 2.4),
+    (4.0, 1.6),
+    (4.6, 3.0),
+    (3.0, 4.4),
+];
+
+/// The parameters at which the paper's E3 samples its trefoil knot.
+const BSPLINE_E3_T: [f64; 11] = [0.0, 0.4, 1.0, 1.5, 2.0, 2.5, 3.2, 3.9, 4.5, 5.1, 5.8];
+
+/// T4 and the trefoil E3 as periodic B-splines, side by side, maxima marked.
+fn bsplines() -> Result<Pixmap> {
+    let t4: Vec<Point> = BSPLINE_T4.iter().map(|&p| p.into()).collect();
+    let e3: Vec<Point3> = BSPLINE_E3_T
+        .iter()
+        .map(|&t: &f64| {
+            let r = 1.0 + 0.3 * (3.0 * t).cos();
+            Point3::new(
+                r * (2.0 * t).cos(),
+                r * (2.0 * t).sin(),
+                0.35 * (3.0 * t).sin(),
+            )
+        })
+        .collect();
+    let view = OrthographicView::new((-60f64).to_radians(), 55f64.to_radians());
+    let scenes = [
+        BSpline::periodic(&t4)
+            .map_err(Failure::new)?
+            .scene(FIGURE_PANEL, FIGURE_PANEL),
+        BSpline3::periodic(&e3)
+            .map_err(Failure::new)?
+            .scene(view, FIGURE_PANEL, FIGURE_PANEL),
+    ];
+    let images = scenes
+        .iter()
+        .map(|s| s.render().map_err(Failure::new))
+        .collect::<Result<Vec<_>>>()?;
+    hstack(&images, FIGURE_GAP).map_err(Failure::new)
 }
 
 /// The file-name tag of a variant: `kappa` or `ek-<a>`.
