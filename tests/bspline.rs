@@ -1050,6 +1050,15 @@ fn extreme_coordinates_scale_exactly() {
         assert!((k / reference.curvature(2.3) - 1.0).abs() < 1e-12);
         assert!((s.arclen(1e-9 * scale) / scale - reference.arclen(1e-9)).abs() < 1e-8);
     }
+    // A subnormal extent still interpolates (its curvature, about 1e310, overflows f64).
+    let tiny: Vec<Point> = base
+        .iter()
+        .map(|&q| (q.to_vec2() * 1e-310).to_point())
+        .collect();
+    let s = BSpline::new(&tiny, true).unwrap();
+    for (a, b) in s.control_points().iter().zip(reference.control_points()) {
+        assert!((a.to_vec2() * 1e300 * 1e10 - b.to_vec2()).hypot() < 1e-8);
+    }
     // Far from the origin: translation changes nothing but rounding.
     let far: Vec<Point> = base
         .iter()

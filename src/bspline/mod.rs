@@ -497,15 +497,17 @@ fn interpolate<P: Coords<D> + Lin, const D: usize>(
     }
     // Halves first: (lo + hi) / 2 can overflow where lo/2 + hi/2 does not.
     let center: [f64; D] = core::array::from_fn(|k| 0.5 * lo[k] + 0.5 * hi[k]);
-    // A subnormal size has no finite reciprocal: divide instead.
-    let inv = 1.0 / size;
+    // A subnormal size has no finite reciprocal: then differences are scaled up by 2⁶⁰⁰
+    // (exactly) first, which keeps them far from overflow.
+    let pre = if (1.0 / size).is_finite() {
+        1.0
+    } else {
+        2f64.powi(600)
+    };
+    let inv = 1.0 / (size * pre);
     let local = |p: P| -> [f64; D] {
         let c = p.coords();
-        if inv.is_finite() {
-            core::array::from_fn(|k| (c[k] - center[k]) * inv)
-        } else {
-            core::array::from_fn(|k| (c[k] - center[k]) / size)
-        }
+        core::array::from_fn(|k| (c[k] - center[k]) * pre * inv)
     };
     let coincident2 = COINCIDENT * COINCIDENT;
     let repeated = |a: [f64; D], b: [f64; D]| {
