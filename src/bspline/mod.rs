@@ -1,66 +1,6 @@
 //! Uniform cubic B-splines through given points, open (relaxed) and closed (periodic), in 2D
-//! and 3D, with their exact maximum curvature (seed paper 002).
-//!
-//! # Interpolation
-//!
-//! Given points `s_0 … s_n`, the control points `b_0 … b_n` of the uniform cubic B-spline
-//! through them solve (seed 002 §2)
-//!
-//! ```text
-//! b_{k−1} + 4 b_k + b_{k+1} = 6 s_k
-//! ```
-//!
-//! - **relaxed** (open) for `k = 1 … n−1` with `b_0 = s_0`, `b_n = s_n` (Theorem 2.1): the
-//!   curvature is zero at both ends;
-//! - **periodic** (closed) for `k = 0 … n` with indices mod `n + 1` (seed 002 eqs. 8–9,
-//!   Theorem 2.2): C2 everywhere, `n + 1` segments.
-//!
-//! Segment `k` is the cubic Bézier `s_k, (2b_k + b_{k+1})/3, (b_k + 2b_{k+1})/3, s_{k+1}` on
-//! the global parameter interval `[k, k+1]` (seed 002 eqs. 4–5 and 11, with 0-based indices),
-//! so the whole curve is parameterized by `t ∈ [0, n]` (open) or `t ∈ [0, n + 1]` (closed)
-//! and passes through `s_k` at `t = k`.
-//!
-//! The systems are solved in `O(n)` in a normalized frame (the points' bounding box centred at
-//! the origin, largest side 1), so coordinates near the limits of `f64` do not overflow:
-//! Thomas' algorithm for the open case and the factorization
-//! `(1/α)(I + αS)(I + αS⁻¹)`, `α = 2 − √3`, of the circulant for the closed one. The
-//! paper's closed forms, with `β_ℓ = ((2+√3)^{ℓ+1} − (2−√3)^{ℓ+1})/(2√3)`, cost `O(n²)` and
-//! are kept only as a test oracle. Measured in `tests/bspline.rs`: while they work they agree
-//! with the solver to about 2e-15 of the points' magnitude, but `(2+√3)^{ℓ+1}` overflows `f64`
-//! at `ℓ = 538`. With coordinates of size 1 the periodic form is not finite from 539 points
-//! on, and the relaxed one is silently wrong at 540 points (a term `β_ℓ/β_{n−1}` becomes 0)
-//! and not finite from 541; larger coordinates overflow the sums `Σ β_ℓ s_j` a few points
-//! earlier (536 points for coordinates of size 600).
-//!
-//! # Maximum curvature
-//!
-//! [`BSpline::max_curvature`] is the paper's Algorithm 1 for both dimensions, through
-//! [`analysis`](crate::analysis): on every segment the real roots of the stationarity
-//! polynomial of the curvature (2D: `a·u = 0` and `(v·v)(a′·u) − 3(a·u)(v·a) = 0`, seed 002
-//! eqs. 15–16; 3D: seed 002 eq. 13, degree ≤ 7) plus both segment ends are the candidates;
-//! the maximum of |κ| is returned with **every** global parameter where it is attained, ties
-//! counted within a relative [`BSplineCurvatureMax::TIE_TOLERANCE`] (1e-12): symmetric data
-//! has several equal maxima. [`BSpline::curvature`] is Algorithm 2, the curvature at any
-//! global parameter.
-//!
-//! Running the root finder on every segment costs a few microseconds each, so segments are
-//! first screened by cheap bounds (`curvature_bounds`): the curvature at the joints is a lower
-//! bound of the maximum, and the Bernstein coefficients of `r′ × r″` over a lower bound of
-//! `|r′|³` an upper bound per segment (refined on eight pieces where needed). Segments whose
-//! upper bound is below the best value found cannot attain it and are skipped; the result is
-//! the same as without screening.
-//!
-//! # Input
-//!
-//! Errors are typed ([`Error`]): too few points (an open spline needs 2, a closed one 3),
-//! NaN or infinite coordinates, points whose extent overflows `f64`
-//! ([`Error::ExtentOverflow`], also when the control points could: they stay within 1.5
-//! extents of the centre of the points' bounding box), and **repeated
-//! consecutive points** ([`Error::RepeatedPoint`], within 1e-12 of the drawing size, and the
-//! last and first points of a closed spline): with a uniform parameterization a zero chord
-//! does not give a corner but a small loop through the repeated point, which is never what
-//! the repetition meant. Collinear points are accepted; a closed spline through them runs
-//! back and forth along the line.
+//! and 3D, with their exact maximum curvature (seed paper 002). The mathematics, the
+//! measurements behind the choices and the input rules are documented on [`BSpline`].
 
 use core::ops::Range;
 
@@ -88,9 +28,72 @@ const DIAGONAL: f64 = 4.0;
 const CONTROL_REACH: f64 = 1.5 + 1e-9;
 
 /// A uniform cubic B-spline through given points: relaxed (open, zero end curvature) or
-/// periodic (closed, C2 everywhere). See the [module docs](self) for the equations.
+/// periodic (closed, C2 everywhere).
 ///
 /// `P` is [`kurbo::Point`] (2D, the default) or [`Point3`] ([`BSpline3`]).
+///
+/// # Interpolation
+///
+/// Given points `s_0 … s_n`, the control points `b_0 … b_n` of the uniform cubic B-spline
+/// through them solve (seed 002 §2)
+///
+/// ```text
+/// b_{k−1} + 4 b_k + b_{k+1} = 6 s_k
+/// ```
+///
+/// - **relaxed** (open) for `k = 1 … n−1` with `b_0 = s_0`, `b_n = s_n` (Theorem 2.1): the
+///   curvature is zero at both ends;
+/// - **periodic** (closed) for `k = 0 … n` with indices mod `n + 1` (seed 002 eqs. 8–9,
+///   Theorem 2.2): C2 everywhere, `n + 1` segments.
+///
+/// Segment `k` is the cubic Bézier `s_k, (2b_k + b_{k+1})/3, (b_k + 2b_{k+1})/3, s_{k+1}` on
+/// the global parameter interval `[k, k+1]` (seed 002 eqs. 4–5 and 11, with 0-based indices),
+/// so the whole curve is parameterized by `t ∈ [0, n]` (open) or `t ∈ [0, n + 1]` (closed)
+/// and passes through `s_k` at `t = k`.
+///
+/// The systems are solved in `O(n)` in a normalized frame (the points' bounding box centred at
+/// the origin, largest side 1), so coordinates near the limits of `f64` do not overflow:
+/// Thomas' algorithm for the open case and the factorization
+/// `(1/α)(I + αS)(I + αS⁻¹)`, `α = 2 − √3`, of the circulant for the closed one. The
+/// paper's closed forms, with `β_ℓ = ((2+√3)^{ℓ+1} − (2−√3)^{ℓ+1})/(2√3)`, cost `O(n²)` and
+/// are kept only as a test oracle. Measured in `tests/bspline.rs`: while they work they agree
+/// with the solver to about 2e-15 of the points' magnitude, but `(2+√3)^{ℓ+1}` overflows `f64`
+/// at `ℓ = 538`. With coordinates of size 1 the periodic form is not finite from 539 points
+/// on, and the relaxed one is silently wrong at 540 points (a term `β_ℓ/β_{n−1}` becomes 0)
+/// and not finite from 541; larger coordinates overflow the sums `Σ β_ℓ s_j` a few points
+/// earlier (536 points for coordinates of size 600).
+///
+/// # Maximum curvature
+///
+/// [`BSpline::max_curvature`] is the paper's Algorithm 1 for both dimensions, through
+/// [`analysis`](crate::analysis): on every segment the real roots of the stationarity
+/// polynomial of the curvature (2D: `a·u = 0` and `(v·v)(a′·u) − 3(a·u)(v·a) = 0`, seed 002
+/// eqs. 15–16; 3D: seed 002 eq. 13, degree ≤ 7) plus both segment ends are the candidates;
+/// the maximum of |κ| is returned with **every** global parameter where it is attained, ties
+/// counted within a relative [`BSplineCurvatureMax::TIE_TOLERANCE`] (1e-12): symmetric data
+/// has several equal maxima. [`BSpline::curvature`] is Algorithm 2, the curvature at any
+/// global parameter.
+///
+/// Running the root finder on every segment costs a few microseconds each, so segments are
+/// first screened by cheap bounds (`curvature_bounds`): the curvature at the joints is a lower
+/// bound of the maximum, and the Bernstein coefficients of `r′ × r″` over a lower bound of
+/// `|r′|³` an upper bound per segment (refined on eight pieces where needed). Segments whose
+/// upper bound is below the best value found cannot attain it and are skipped; the result is
+/// the same as without screening.
+///
+/// # Input
+///
+/// Errors are typed ([`Error`]): too few points (an open spline needs 2, a closed one 3),
+/// NaN or infinite coordinates, points whose extent overflows `f64`
+/// ([`Error::ExtentOverflow`], also when the control points could: they stay within 1.5
+/// extents of the centre of the points' bounding box), and **repeated
+/// consecutive points** ([`Error::RepeatedPoint`], within 1e-12 of the drawing size, and the
+/// last and first points of a closed spline): with a uniform parameterization a zero chord
+/// does not give a corner but a small loop through the repeated point, which is never what
+/// the repetition meant. Collinear points are accepted; a closed spline through them runs
+/// back and forth along the line.
+///
+/// # Example
 ///
 /// ```
 /// use kappa::BSpline;
