@@ -60,6 +60,13 @@ pub enum Error {
     /// A solver option (tolerance, iteration cap, ...) is not usable.
     #[error("invalid option: {0}")]
     InvalidOption(&'static str),
+    /// A curve handed to the fitting adapter evaluates to a NaN or infinite point or
+    /// derivative.
+    #[error("segment {segment} of the curve to fit is not finite")]
+    NonFiniteCurve {
+        /// Index of the offending segment.
+        segment: usize,
+    },
     /// The solver stopped at its iteration cap before reaching the tolerance.
     #[error("did not converge in {iterations} iterations (relative residual {residual:e})")]
     NotConverged {

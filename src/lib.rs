@@ -49,6 +49,8 @@
 //!   ([`Scheme::EkCubic`]), open and closed; [`Solver3`] for 3D points.
 //! - [`analysis`]: curvature of Bézier segments of degree 1–4 in 2D and 3D, curvature
 //!   extrema, maxima of paths, continuity at joints, curvature combs.
+//! - [`fit`]: cubic Bézier paths for curves that are not polynomial, within a measured
+//!   tolerance.
 //! - `render` (feature `render`): deterministic SVG/PNG pictures and golden-image comparison.
 //! - `gallery` (features `render` + `serde`): the paper-style figures.
 //! - [`BUILTIN_DESIGNS`]: the drawings of the εκ-curve paper, compiled in.
@@ -79,6 +81,7 @@ mod basis;
 mod design;
 mod designs;
 mod error;
+pub mod fit;
 #[cfg(all(feature = "render", feature = "serde"))]
 pub mod gallery;
 mod linalg;
