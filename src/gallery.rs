@@ -5,6 +5,7 @@
 use kurbo::{BezPath, Point, Rect};
 
 use crate::analysis::{curvature_comb, path_max_curvature};
+use crate::fit::FitOptions;
 use crate::render::{hstack, Pixmap, RenderError, Scene};
 use crate::{Design, Error, Scheme, Shape, Solver};
 
@@ -21,6 +22,8 @@ pub const FIGURE_GAP: u32 = 8;
 
 /// Teeth of a curve's comb reach this fraction of that curve's size at its largest |κ|.
 const COMB_FRACTION: f64 = 0.15;
+/// Fitting tolerance for εκ-trig curves, relative to the curve's size.
+const FIT_TOLERANCE: f64 = 1e-6;
 /// Comb samples per segment.
 const COMB_SAMPLES: usize = 16;
 /// Margin around the input points, as a fraction of the drawing's larger side.
@@ -57,12 +60,19 @@ pub fn solve_design(
         let pts = c.kurbo_points();
         let shape = match scheme {
             Scheme::Kappa => Shape::Neutral,
-            Scheme::EkCubic => Shape::Global(a),
+            Scheme::EkCubic | Scheme::EkTrig => Shape::Global(a),
         };
+        let err = |source| GalleryError::Curve { curve, source };
         let spline = solver
             .solve(&pts, c.is_closed(), scheme, &shape)
-            .map_err(|source| GalleryError::Curve { curve, source })?;
-        out.push((spline.to_bezpath(), pts));
+            .map_err(err)?;
+        // Trigonometric curves are fitted tightly, so that the combs drawn from the path
+        // show the exact curve's curvature.
+        let path = spline
+            .fit(&FitOptions::relative(FIT_TOLERANCE))
+            .map_err(err)?
+            .path;
+        out.push((path, pts));
     }
     Ok(out)
 }

@@ -90,12 +90,14 @@ mod point3;
 pub mod render;
 mod solver;
 mod spline;
+pub mod trig;
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
 
+pub use basis::Extremum;
 #[cfg(feature = "serde")]
 pub use design::{Design, DesignCurve};
 pub use designs::{builtin_design, BUILTIN_DESIGNS};
@@ -103,5 +105,6 @@ pub use error::Error;
 pub use point3::{Point3, Vec3};
 pub use spline::{
     Coords, Scheme, Segment, Shape, SolveOptions, SolveReport, Solver, Solver3, SolverN, Spline,
-    Spline3,
+    Spline3, EK_TRIG_DEFAULT_SHAPE,
 };
+pub use trig::TrigBez;

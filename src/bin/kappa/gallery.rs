@@ -96,6 +96,7 @@ fn variant_name(scheme: Scheme, a: f64) -> String {
     match scheme {
         Scheme::Kappa => "kappa".to_owned(),
         Scheme::EkCubic => format!("ek-{a}"),
+        Scheme::EkTrig => format!("ek-trig-{a}"),
     }
 }
 
