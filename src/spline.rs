@@ -33,7 +33,7 @@ pub enum Scheme {
 
 /// The default shape parameter of [`Scheme::EkTrig`]. A symmetric segment's stationary
 /// point is a curvature minimum below `a ≈ 0.6104` (for a gentle 1° turn; less for sharper
-/// turns), and asymmetric segments need more: on the εκ paper's drawings, 9 of their points
+/// turns), and asymmetric segments need more: on the built-in drawings, 9 of their points
 /// sit at minima with `a = 0.65` and none with `a = 0.7`.
 pub const EK_TRIG_DEFAULT_SHAPE: f64 = 0.7;
 

@@ -91,18 +91,20 @@ impl TrigBez {
         (self.range.start + w * t, w)
     }
 
-    /// Runs `f` on a mutable copy of the control points (on the stack up to degree 8).
+    /// Runs `f` on a mutable copy of the control points relative to the first one (on the
+    /// stack up to degree 8). Blending differences keeps small curves far from the origin
+    /// accurate: the derivatives do not carry the rounding of the absolute coordinates.
     #[inline]
     fn with_copy<R>(&self, f: impl FnOnce(&mut [Vec2]) -> R) -> R {
         let n = self.points.len();
         if n <= STACK_POINTS {
             let mut buf = [Vec2::ZERO; STACK_POINTS];
             for (b, p) in buf.iter_mut().zip(&self.points) {
-                *b = p.to_vec2();
+                *b = *p - self.points[0];
             }
             f(&mut buf[..n])
         } else {
-            let mut buf: Vec<Vec2> = self.points.iter().map(|p| p.to_vec2()).collect();
+            let mut buf: Vec<Vec2> = self.points.iter().map(|p| *p - self.points[0]).collect();
             f(&mut buf)
         }
     }
@@ -124,16 +126,17 @@ impl TrigBez {
                 len -= 2;
             }
             let nf = n as f64;
+            let origin = self.points[0];
             if n == 1 {
-                let p = dot3(k, buf, 0);
-                return (p.to_point(), dot3(k1, buf, 0), dot3(k2, buf, 0));
+                let p = origin + dot3(k, buf, 0);
+                return (p, dot3(k1, buf, 0), dot3(k2, buf, 0));
             }
             // From the five points of level n-2: X'² and X''X, then X for the rest.
             let e1 = [dot3(k1, buf, 0), dot3(k1, buf, 1), dot3(k1, buf, 2)];
             let x = [dot3(k, buf, 0), dot3(k, buf, 1), dot3(k, buf, 2)];
             let d1 = nf * dot3(k1, &x, 0);
             let d2 = nf * (nf - 1.0) * dot3(k1, &e1, 0) + nf * dot3(k2, &x, 0);
-            (dot3(k, &x, 0).to_point(), d1, d2)
+            (origin + dot3(k, &x, 0), d1, d2)
         })
     }
 
