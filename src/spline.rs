@@ -222,6 +222,29 @@ impl Segment<Point> {
         self.to_path_seg().eval(t)
     }
 
+    /// The signed curvature at `t` (positive for left turns), exact for every scheme.
+    pub fn curvature(&self, t: f64) -> f64 {
+        if self.scheme == Scheme::EkTrig {
+            return self.to_trig().curvature(t);
+        }
+        crate::analysis::CurvatureAnalysis::curvature(&self.to_path_seg(), t)
+    }
+
+    /// The curvature vector at `t` (`κ` times the left unit normal: it points to the centre
+    /// of curvature), exact for every scheme; zero where the tangent is undefined.
+    pub fn curvature_vector(&self, t: f64) -> kurbo::Vec2 {
+        if self.scheme == Scheme::EkTrig {
+            let trig = self.to_trig();
+            let d = trig.derivative(t);
+            let len = d.hypot();
+            if len == 0.0 || !len.is_finite() {
+                return kurbo::Vec2::ZERO;
+            }
+            return trig.curvature(t) * kurbo::Vec2::new(-d.y, d.x) / len;
+        }
+        crate::analysis::CurvatureAnalysis::curvature_vector(&self.to_path_seg(), t)
+    }
+
     /// Whether `|κ|` is maximal or minimal at `t_max` (see [`Extremum`]). κ and εκ-cubic
     /// segments always peak there; εκ-trig segments with `a` below about 0.61 may not.
     pub fn extremum(&self) -> Extremum {
@@ -323,6 +346,35 @@ impl Spline<Point> {
         shape: impl Into<Shape>,
     ) -> Result<Spline, Error> {
         Solver::new().solve(points, closed, Scheme::EkTrig, &shape.into())
+    }
+
+    /// A curvature comb of the exact curve (every scheme, trigonometric segments included):
+    /// `samples_per_segment` teeth per segment, uniform in `t` with both ends, each from the
+    /// curve point `p` to `p − scale · κ · n` (see [`crate::analysis::curvature_comb`]).
+    pub fn curvature_comb(&self, scale: f64, samples_per_segment: usize) -> BezPath {
+        let m = samples_per_segment.max(2);
+        let samples = self.segments.iter().flat_map(|seg| {
+            (0..m).map(move |i| {
+                let t = i as f64 / (m - 1) as f64;
+                (seg.eval(t), seg.curvature_vector(t))
+            })
+        });
+        crate::analysis::comb_from_samples(samples, scale)
+    }
+
+    /// The largest |κ| of the curve: at the peak parameters, the segment ends, and 64
+    /// samples per segment (exact for the peaks the scheme places at the input points).
+    pub fn max_abs_curvature(&self) -> f64 {
+        self.segments
+            .iter()
+            .flat_map(|seg| {
+                (0..=64)
+                    .map(|i| i as f64 / 64.0)
+                    .chain([seg.t_max])
+                    .map(move |t| seg.curvature(t).abs())
+            })
+            .filter(|k| k.is_finite())
+            .fold(0.0, f64::max)
     }
 
     /// The curve as a kurbo path within `options`' tolerance, with the number of cubics per

@@ -619,6 +619,9 @@ fn cli_gallery() {
             expected.push(format!("{name}-{variant}.svg"));
         }
     }
+    for name in ["eps-ClosedEkcurveKTM1", "rose"] {
+        expected.push(format!("{name}-trig.png"));
+    }
     expected.push("drawings.png".to_owned());
     assert_eq!(printed.len(), expected.len(), "{printed:?}");
     for file in &expected {
@@ -634,6 +637,8 @@ fn cli_gallery() {
     }
     let figure = kappa::render::golden::load_png(&dir.join("sub/bear.png")).unwrap();
     assert_eq!(figure.height(), 360);
+    let trig = kappa::render::golden::load_png(&dir.join("sub/rose-trig.png")).unwrap();
+    assert_eq!((trig.width(), trig.height()), (7 * 300 + 6 * 8, 300));
     let drawings = kappa::render::golden::load_png(&dir.join("sub/drawings.png")).unwrap();
     assert!(drawings.width() >= 3 * 300 && drawings.height() >= 3 * 300);
 }
