@@ -3,7 +3,7 @@
 
 mod common;
 
-use kappa::fit::FitOptions;
+use kappa::fit::{FitMethod, FitOptions};
 use kappa::{Error, Extremum, Scheme, Segment, Shape, SolveOptions, Solver, Spline, TrigBez};
 use kurbo::{ParamCurve, ParamCurveNearest, Point, Rect};
 use proptest::prelude::*;
@@ -293,10 +293,21 @@ fn fitted_paths_stay_within_tolerance() {
     // Dense sampling of the exact curve against the fitted path (independent of the
     // adapter's own measurement), and tangent continuity at every joint of the path.
     let bear = kappa::Design::from_json(kappa::builtin_design("bear").unwrap()).unwrap();
-    for tol in [1e-3, 1e-4, 1e-6] {
+    for (tol, method) in [
+        (1e-3, FitMethod::Kurbo),
+        (1e-4, FitMethod::Kurbo),
+        (1e-6, FitMethod::Kurbo),
+        (1e-4, FitMethod::KurboOptimized),
+        (1e-4, FitMethod::Hermite),
+        (1e-7, FitMethod::Hermite),
+    ] {
         for c in bear.curves.iter().take(8) {
             let s = Spline::ek_trig(&c.kurbo_points(), c.is_closed(), 0.75).unwrap();
-            let fitted = s.fit(&FitOptions::relative(tol)).unwrap();
+            let options = FitOptions {
+                method,
+                ..FitOptions::relative(tol)
+            };
+            let fitted = s.fit(&options).unwrap();
             assert!(fitted.max_distance <= fitted.tolerance);
             let cubics: Vec<kurbo::CubicBez> =
                 fitted.path.segments().map(|s| s.to_cubic()).collect();
