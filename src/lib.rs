@@ -45,8 +45,10 @@
 //!
 //! # What is where
 //!
-//! - [`Spline`], [`Solver`]: κ-curves ([`Scheme::Kappa`]) and cubic εκ-curves
-//!   ([`Scheme::EkCubic`]), open and closed; [`Solver3`] for 3D points.
+//! - [`Spline`], [`Solver`]: κ-curves ([`Scheme::Kappa`]), cubic εκ-curves
+//!   ([`Scheme::EkCubic`]) and trigonometric εκ-curves ([`Scheme::EkTrig`]), open and closed;
+//!   [`Solver3`] for 3D points.
+//! - [`TrigBez`] ([`trig`]): curves of the generalized trigonometric basis of any degree.
 //! - [`analysis`]: curvature of Bézier segments of degree 1–4 in 2D and 3D, curvature
 //!   extrema, maxima of paths, continuity at joints, curvature combs.
 //! - [`fit`]: cubic Bézier paths for curves that are not polynomial, within a measured
