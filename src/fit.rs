@@ -6,12 +6,13 @@
 //! trusting the fitter. Three methods ([`FitMethod`]):
 //!
 //! - kurbo's curve fitting, [`kurbo::fit_to_bezpath`] (the default) or the optimizing
-//!   [`kurbo::fit_to_bezpath_opt`]: the fewest cubics, at about 20 µs per segment;
+//!   [`kurbo::fit_to_bezpath_opt`]: the fewest cubics, at about 0.1 ms (optimizing: 10 ms)
+//!   per trigonometric segment;
 //! - Hermite subdivision: each piece is the cubic with the source's end points and end
-//!   derivatives, halved until 8 interior samples of the *parametric* error are within
-//!   the tolerance. The parametric error bounds the distance to the curve, so the check is
-//!   conservative; it needs more cubics but is an order of magnitude faster (interactive
-//!   previews, large drawings).
+//!   derivatives, split (into as many equal pieces as the `h⁴` error law predicts) until 8
+//!   interior samples of the *parametric* error are within the tolerance. The parametric
+//!   error bounds the distance to the curve, so the check is conservative; it needs about
+//!   twice the cubics but is over 20 times faster (interactive previews, large drawings).
 //!
 //! A segment only has to implement [`ParamCurveFit`] on `t ∈ [0, 1]`: position and
 //! derivative ([`ParamCurveFit::sample_pt_deriv`]), a one-sided tangent
@@ -49,8 +50,8 @@ pub enum FitMethod {
     Kurbo,
     /// [`kurbo::fit_to_bezpath_opt`]: fewer cubics, several times slower.
     KurboOptimized,
-    /// Hermite cubics on halved parameter ranges until the parametric error is within the
-    /// tolerance (at most 2^12 pieces per segment).
+    /// Hermite cubics on split parameter ranges until the parametric error is within the
+    /// tolerance (at most 12 levels of splitting).
     Hermite,
 }
 
@@ -216,7 +217,7 @@ pub fn fit<C: ParamCurveFit>(
     })
 }
 
-/// Maximum halving depth of [`FitMethod::Hermite`].
+/// Maximum splitting depth of [`FitMethod::Hermite`].
 const HERMITE_DEPTH: u32 = 12;
 /// Interior samples of the parametric error per Hermite piece.
 const HERMITE_SAMPLES: usize = 8;
@@ -252,11 +253,26 @@ fn hermite<C: ParamCurveFit>(
             worst = worst.max(err);
             pieces.push(cubic);
         } else {
-            let tm = 0.5 * (t0 + t1);
-            let mid = segment.sample_pt_deriv(tm);
-            // Right half first, so that the left half is taken next.
-            stack.push((tm, t1, mid, (p3, d3), depth + 1));
-            stack.push((t0, tm, (p0, d0), mid, depth + 1));
+            // The error of Hermite interpolation shrinks like h⁴: split into the predicted
+            // number of equal pieces (with a margin), each checked again.
+            let k = ((err / tolerance).powf(0.25) * 1.1).ceil().clamp(2.0, 64.0) as usize;
+            let mut right = (p3, d3);
+            // Right to left, so that the leftmost piece is taken next.
+            for i in (0..k).rev() {
+                let ta = t0 + h * i as f64 / k as f64;
+                let tb = if i + 1 == k {
+                    t1
+                } else {
+                    t0 + h * (i + 1) as f64 / k as f64
+                };
+                let left = if i == 0 {
+                    (p0, d0)
+                } else {
+                    segment.sample_pt_deriv(ta)
+                };
+                stack.push((ta, tb, left, right, depth + 1));
+                right = left;
+            }
         }
     }
     Some(worst)
