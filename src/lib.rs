@@ -51,6 +51,8 @@
 //! - [`TrigBez`] ([`trig`]): curves of the generalized trigonometric basis of any degree.
 //! - [`analysis`]: curvature of Bézier segments of degree 1–4 in 2D and 3D, curvature
 //!   extrema, maxima of paths, continuity at joints, curvature combs.
+//! - [`editor`]: the engine of a curvature-pen path tool (edits, corners, undo/redo, hit
+//!   testing, warm re-solves).
 //! - [`fit`]: cubic Bézier paths for curves that are not polynomial, within a measured
 //!   tolerance.
 //! - `render` (feature `render`): deterministic SVG/PNG pictures and golden-image comparison.
@@ -82,6 +84,7 @@ mod basis;
 #[cfg(feature = "serde")]
 mod design;
 mod designs;
+pub mod editor;
 mod error;
 pub mod fit;
 #[cfg(all(feature = "render", feature = "serde"))]

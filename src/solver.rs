@@ -57,7 +57,7 @@ const A_HOMES_TRIG: [f64; 4] = [0.85, 0.75, 0.95, 0.6];
 /// decrease test (the merit is at rounding noise there for very large curves).
 const QUADRATIC_REGION: f64 = 1e3;
 /// Chord steps (warm re-solves) must shrink the merit by this factor or Newton takes over.
-const CHORD_CONTRACTION: f64 = 0.1;
+const CHORD_CONTRACTION: f64 = 1e-2;
 /// At most this many chord steps per warm re-solve.
 const MAX_CHORD: usize = 12;
 /// Newton budget of one continuation step.

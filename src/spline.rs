@@ -14,6 +14,11 @@ const COINCIDENT: f64 = 1e-12;
 
 /// The family of segments a curve is built from.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
 pub enum Scheme {
     /// κ-curves (Yan et al. 2017): quadratic Bézier segments, curvature peaks at the points.
     #[default]
@@ -353,12 +358,27 @@ impl Spline<Point> {
     /// curve point `p` to `p − scale · κ · n` (see [`crate::analysis::curvature_comb`]).
     pub fn curvature_comb(&self, scale: f64, samples_per_segment: usize) -> BezPath {
         let m = samples_per_segment.max(2);
-        let samples = self.segments.iter().flat_map(|seg| {
-            (0..m).map(move |i| {
+        let mut samples = Vec::with_capacity(m * self.segments.len());
+        for seg in &self.segments {
+            // One curve object per segment; points and derivatives straight from it.
+            let trig = (seg.scheme == Scheme::EkTrig).then(|| seg.to_trig());
+            let poly = seg.to_path_seg();
+            for i in 0..m {
                 let t = i as f64 / (m - 1) as f64;
-                (seg.eval(t), seg.curvature_vector(t))
-            })
-        });
+                let (p, d1, d2) = match &trig {
+                    Some(c) => (c.eval(t), c.derivative(t), c.second_derivative(t)),
+                    None => path_seg_derivs(&poly, t),
+                };
+                let len2 = d1.hypot2();
+                let k = if len2 > 0.0 && len2.is_finite() {
+                    // κ n with n the left unit normal: (d1 × d2)/|d1|⁴ · (-d1.y, d1.x).
+                    d1.cross(d2) / (len2 * len2) * kurbo::Vec2::new(-d1.y, d1.x)
+                } else {
+                    kurbo::Vec2::ZERO
+                };
+                samples.push((p, k));
+            }
+        }
         crate::analysis::comb_from_samples(samples, scale)
     }
 
@@ -460,6 +480,24 @@ impl Spline<Point> {
             }
         }
         out
+    }
+}
+
+/// Point, first and second derivative of a kurbo segment at `t`.
+fn path_seg_derivs(seg: &PathSeg, t: f64) -> (Point, kurbo::Vec2, kurbo::Vec2) {
+    use kurbo::ParamCurveDeriv;
+    match seg {
+        PathSeg::Line(l) => (l.eval(t), l.p1 - l.p0, kurbo::Vec2::ZERO),
+        PathSeg::Quad(q) => (
+            q.eval(t),
+            q.deriv().eval(t).to_vec2(),
+            q.deriv().deriv().eval(t).to_vec2(),
+        ),
+        PathSeg::Cubic(c) => (
+            c.eval(t),
+            c.deriv().eval(t).to_vec2(),
+            c.deriv().deriv().eval(t).to_vec2(),
+        ),
     }
 }
 
@@ -798,10 +836,20 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                 report,
             });
         }
-        if !closed
-            && collinear(&self.prob.p)
-            && collinear(&[self.prob.ghost[0], self.prob.p[0], self.prob.ghost[1]])
-        {
+        if !closed && {
+            // All input points on one line (the ends may coincide, as in a loop that starts
+            // where it ends, so they are checked together with the interior points).
+            let mut all = Vec::with_capacity(self.prob.p.len() + 2);
+            all.push(self.prob.ghost[0]);
+            all.extend_from_slice(&self.prob.p);
+            all.push(self.prob.ghost[1]);
+            if collinear(&all) && !monotone_along_line(&all) {
+                // A curve through points that double back along one line would need a
+                // cusp at every reversal: there is no κ- or εκ-curve through them.
+                return Err(Error::Collinear);
+            }
+            collinear(&all)
+        } {
             self.straight_solution();
             self.warm = true;
             let report = SolveReport {
@@ -912,6 +960,14 @@ fn block_range(closed: bool, m: usize) -> core::ops::Range<usize> {
     } else {
         1..m - 1
     }
+}
+
+/// Whether points on one line come in strictly monotone order along it.
+fn monotone_along_line<const D: usize>(p: &[[f64; D]]) -> bool {
+    let last = p[p.len() - 1];
+    let dir: [f64; D] = core::array::from_fn(|k| last[k] - p[0][k]);
+    let along = |q: &[f64; D]| (0..D).map(|k| (q[k] - p[0][k]) * dir[k]).sum::<f64>();
+    p.windows(2).all(|w| along(&w[1]) > along(&w[0]))
 }
 
 /// Whether all points lie on one line (relative to the drawing size 1).

@@ -754,3 +754,55 @@ fn svg_path_data_reads_back_exactly_and_stays_short() {
         assert_eq!(back, s.to_bezpath());
     }
 }
+
+#[test]
+fn open_loop_through_two_points_is_not_straight() {
+    // An open curve that starts and ends at the same point with two points between: not
+    // collinear, so it must be a real curve through all of them.
+    let pts = [
+        Point::new(153.0, 109.0),
+        Point::new(128.0, 121.0),
+        Point::new(126.0, 118.0),
+        Point::new(153.0, 109.0),
+    ];
+    for (scheme, a) in SCHEMES {
+        let s = Solver::new()
+            .solve(&pts, false, scheme, &shape_of(scheme, a))
+            .unwrap();
+        check_spline(&s, &pts, false, 30.0, "open loop");
+    }
+}
+
+#[test]
+fn open_points_doubling_back_along_a_line_are_collinear() {
+    // p0 → p1 → p2 → p0 on one line: no curve passes through them without cusps.
+    let pts = [
+        Point::new(151.4, 88.2),
+        Point::new(197.7, 47.7),
+        Point::new(71.13, 158.4),
+        Point::new(151.4, 88.2),
+    ];
+    let pts: Vec<Point> = pts
+        .iter()
+        .map(|p| {
+            // Exactly on the line through the first two points.
+            let d = Point::new(197.7, 47.7) - Point::new(151.4, 88.2);
+            let s = (*p - Point::new(151.4, 88.2)).dot(d) / d.hypot2();
+            Point::new(151.4, 88.2) + d * s
+        })
+        .collect();
+    for (scheme, a) in SCHEMES {
+        assert_eq!(
+            Solver::new()
+                .solve(&pts, false, scheme, &shape_of(scheme, a))
+                .unwrap_err(),
+            Error::Collinear
+        );
+    }
+    // In order along the line they still give the straight curve.
+    let mut sorted = pts[..3].to_vec();
+    sorted.sort_by(|a, b| a.x.total_cmp(&b.x));
+    assert!(Solver::new()
+        .solve(&sorted, false, Scheme::Kappa, &Shape::Neutral)
+        .is_ok());
+}
