@@ -1,6 +1,8 @@
 //! The path-tool engine: random edit sequences keep every property of the curves, undo/redo
 //! restore exactly, inserting on the curve barely changes it, corners break tangents.
 
+mod common;
+
 use kappa::editor::{EditPoint, Editor, PathDoc};
 use kappa::Scheme;
 use kurbo::{ParamCurve, Point};
@@ -79,20 +81,8 @@ fn check(e: &Editor) {
                 // The largest |κ| near t_max (golden-section search within ±0.02, inside the
                 // segment) is at t_max,
                 // or |κ| is flat there (a degenerate stationary point).
-                let f = |x: f64| -seg.curvature(x).abs();
-                // A window that stays inside the segment: the claim is a local maximum.
                 let w = 0.02f64.min(0.5 * t).min(0.5 * (1.0 - t));
-                let (mut lo, mut hi) = (t - w, t + w);
-                let g = 0.5 * (5f64.sqrt() - 1.0);
-                for _ in 0..100 {
-                    let (x1, x2) = (hi - g * (hi - lo), lo + g * (hi - lo));
-                    if f(x1) < f(x2) {
-                        hi = x2;
-                    } else {
-                        lo = x1;
-                    }
-                }
-                let found = 0.5 * (lo + hi);
+                let found = common::golden_max(|x| seg.curvature(x).abs(), t - w, t + w);
                 let h = 1e-4;
                 let slope = (seg.curvature(t + h).abs() - seg.curvature(t - h).abs()) / (2.0 * h);
                 assert!(

@@ -11,25 +11,12 @@ use proptest::prelude::*;
 /// The parameter of the local extremum of |κ| near `t` (maximum or minimum, within ±0.02),
 /// by golden-section search on the exact curve: independent of the solver's peak condition.
 fn local_extremum(c: &TrigBez, t: f64, max: bool) -> f64 {
-    let f = |x: f64| {
-        let k = c.curvature(x).abs();
-        if max {
-            -k
-        } else {
-            k
-        }
-    };
-    let (mut a, mut b) = ((t - 0.02).max(0.0), (t + 0.02).min(1.0));
-    let g = 0.5 * (5f64.sqrt() - 1.0);
-    for _ in 0..100 {
-        let (x1, x2) = (b - g * (b - a), a + g * (b - a));
-        if f(x1) < f(x2) {
-            b = x2;
-        } else {
-            a = x1;
-        }
-    }
-    0.5 * (a + b)
+    let sign = if max { 1.0 } else { -1.0 };
+    common::golden_max(
+        |x| sign * c.curvature(x).abs(),
+        (t - 0.02).max(0.0),
+        (t + 0.02).min(1.0),
+    )
 }
 
 fn size_of(points: &[Point]) -> f64 {
@@ -116,18 +103,8 @@ fn check_trig(s: &Spline, points: &[Point], closed: bool, what: &str) {
 
 /// Random star-shaped polygons (sorted angles, radii in [0.35, 1]).
 fn star(n: usize) -> impl Strategy<Value = Vec<Point>> {
-    prop::collection::vec((0.0f64..1.0, 0.35f64..1.0), n).prop_map(|raw| {
-        let mut v = raw;
-        v.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let n = v.len();
-        v.iter()
-            .enumerate()
-            .map(|(i, &(jitter, r))| {
-                let th = (i as f64 + 0.6 * jitter) / n as f64 * std::f64::consts::TAU;
-                Point::new(100.0 * r * th.cos(), 100.0 * r * th.sin())
-            })
-            .collect()
-    })
+    prop::collection::vec((0.0f64..1.0, 0.35f64..1.0), n)
+        .prop_map(|raw| common::star_polygon(&raw, 100.0, 0.0))
 }
 
 const LENIENT: SolveOptions = SolveOptions {
@@ -159,28 +136,16 @@ proptest! {
 fn random_trig_convergence_rate() {
     // 1000 random closed star polygons per shape; every failure must be a typed
     // non-convergence.
-    let mut x = 7u64;
-    let mut next = move || {
-        x = x
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (x >> 11) as f64 / (1u64 << 53) as f64
-    };
+    let mut rng = common::Lcg(7);
     let mut table = String::new();
     for a in [0.7, 0.8, 0.9] {
         let (mut ok, mut total) = (0, 0);
         for _ in 0..1000 {
-            let n = 3 + (next() * 17.0) as usize;
-            let mut raw: Vec<(f64, f64)> = (0..n).map(|_| (next(), 0.35 + 0.65 * next())).collect();
-            raw.sort_by(|p, q| p.0.total_cmp(&q.0));
-            let pts: Vec<Point> = raw
-                .iter()
-                .enumerate()
-                .map(|(i, &(j, r))| {
-                    let th = (i as f64 + 0.6 * j) / n as f64 * std::f64::consts::TAU;
-                    Point::new(100.0 * r * th.cos(), 100.0 * r * th.sin())
-                })
+            let n = 3 + (rng.next() * 17.0) as usize;
+            let raw: Vec<(f64, f64)> = (0..n)
+                .map(|_| (rng.next(), 0.35 + 0.65 * rng.next()))
                 .collect();
+            let pts = common::star_polygon(&raw, 100.0, 0.0);
             total += 1;
             match Spline::ek_trig(&pts, true, a) {
                 Ok(s) => {
