@@ -67,6 +67,13 @@ pub enum Error {
         /// Index of the offending segment.
         segment: usize,
     },
+    /// No curve with the requested curvature profile meets the Hermite end conditions (for
+    /// example G2 end curvatures outside the profile's viable region).
+    #[error("no curve with this curvature profile meets the end conditions: {reason}")]
+    NoHermiteSolution {
+        /// Why the solver gave up.
+        reason: &'static str,
+    },
     /// The solver stopped at its iteration cap before reaching the tolerance.
     #[error("did not converge in {iterations} iterations (relative residual {residual:e})")]
     NotConverged {

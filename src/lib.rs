@@ -84,6 +84,7 @@ mod error;
 pub mod fit;
 #[cfg(all(feature = "render", feature = "serde"))]
 pub mod gallery;
+pub mod intrinsic;
 mod linalg;
 mod point3;
 #[cfg(feature = "render")]

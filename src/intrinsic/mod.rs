@@ -1,0 +1,11 @@
+//! Curves defined by their curvature: explicit (rational) Bézier curvature functions of arc
+//! length (seed 003), G1/G2 Hermite segments and splines.
+
+mod bernstein;
+mod clothoid;
+mod hermite;
+mod roots;
+mod segment;
+
+pub use hermite::{Control, Hermite, HermiteEnd, Profile, Turning, END_TOLERANCE};
+pub use segment::{IntrinsicDeriv, IntrinsicDeriv2, IntrinsicSeg, MAX_TURNING, PIECE_TURN};
