@@ -11,9 +11,8 @@
 //! clothoid library returns.
 
 use kurbo::common::solve_itp;
-use kurbo::common::GAUSS_LEGENDRE_COEFFS_16;
 
-use super::segment::PIECE_TURN;
+use super::quad::Rule;
 
 /// Newton iterations before the bracketing fallback.
 const NEWTON_ITERATIONS: usize = 20;
@@ -25,7 +24,7 @@ const SCAN_STEP: f64 = 0.25;
 const SCAN_STEPS: usize = 400;
 
 /// A clothoid in the normalized frame: length and end curvatures (chord length 1).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Clothoid {
     /// Arc length.
     pub length: f64,
@@ -35,17 +34,24 @@ pub(crate) struct Clothoid {
     pub k1: f64,
 }
 
+impl Clothoid {
+    /// The curvature at `τ = s / L`.
+    pub fn at(&self, t: f64) -> f64 {
+        self.k0 + (self.k1 - self.k0) * t
+    }
+}
+
 /// `(X, Y, dX/dA, dY/dA)` with `X + iY = ∫_0^1 e^{iθ(τ)} dτ`, `θ = Aτ² + (δ − A)τ + φ₀`, by
-/// 16-point Gauss–Legendre on pieces over which `θ` turns by at most [`PIECE_TURN`].
+/// the Gauss–Legendre rule of [`Rule::new`] for the turning bound `max |θ′|`.
 fn moments(a: f64, delta: f64, phi0: f64) -> (f64, f64, f64, f64) {
     // |θ′(τ)| = |2Aτ + δ − A| is largest at an end.
     let bound = (delta - a).abs().max((delta + a).abs());
-    let pieces = (bound / PIECE_TURN).ceil().clamp(1.0, 1e5) as usize;
-    let h = 1.0 / pieces as f64;
+    let rule = Rule::new(bound, None);
+    let h = 1.0 / rule.pieces as f64;
     let (mut x, mut y, mut dx, mut dy) = (0.0, 0.0, 0.0, 0.0);
-    for p in 0..pieces {
+    for p in 0..rule.pieces {
         let mid = (p as f64 + 0.5) * h;
-        for &(wi, xi) in GAUSS_LEGENDRE_COEFFS_16 {
+        for &(wi, xi) in rule.coeffs {
             let t = mid + 0.5 * h * xi;
             let th = (a * t + delta - a) * t + phi0;
             let (s, c) = th.sin_cos();
@@ -90,11 +96,12 @@ pub(crate) fn solve(phi0: f64, delta: f64) -> Option<Clothoid> {
     let phi1 = phi0 + delta;
     let g = |a: f64| moments(a, delta, phi0).1;
     let mut a = guess(phi0, phi1);
-    let mut found = None;
     for _ in 0..NEWTON_ITERATIONS {
-        let (_, y, _, dy) = moments(a, delta, phi0);
+        let (x, y, _, dy) = moments(a, delta, phi0);
         if y.abs() <= G_TOLERANCE {
-            found = Some(a);
+            if x > 0.0 {
+                return finish(a, delta, x);
+            }
             break;
         }
         let step = y / dy;
@@ -102,13 +109,6 @@ pub(crate) fn solve(phi0: f64, delta: f64) -> Option<Clothoid> {
             break;
         }
         a -= step;
-        if step.abs() <= 1e-15 * a.abs().max(1.0) {
-            found = Some(a);
-            break;
-        }
-    }
-    if let Some(a) = found.filter(|&a| moments(a, delta, phi0).0 > 0.0) {
-        return finish(a, delta, phi0);
     }
     // Fallback: the nearest sign change of g around the guess with X > 0, refined by ITP.
     let bracket = |lo: (f64, f64), hi: (f64, f64)| -> Option<Clothoid> {
@@ -126,9 +126,8 @@ pub(crate) fn solve(phi0: f64, delta: f64) -> Option<Clothoid> {
             -(lo.1.abs().max(f64::MIN_POSITIVE)),
             hi.1.abs().max(f64::MIN_POSITIVE),
         );
-        (moments(root, delta, phi0).0 > 0.0)
-            .then(|| finish(root, delta, phi0))
-            .flatten()
+        let x = moments(root, delta, phi0).0;
+        (x > 0.0).then(|| finish(root, delta, x)).flatten()
     };
     let a0 = guess(phi0, phi1);
     let mut right = (a0, g(a0));
@@ -150,9 +149,16 @@ pub(crate) fn solve(phi0: f64, delta: f64) -> Option<Clothoid> {
     None
 }
 
-/// Length and end curvatures for a root `a` of `g`.
-fn finish(a: f64, delta: f64, phi0: f64) -> Option<Clothoid> {
-    let (x, _, _, _) = moments(a, delta, phi0);
+/// The clothoid of the initial guess for `A` alone (no Newton iterations): it meets both end
+/// angles and, approximately, the end point; a start for other profiles.
+pub(crate) fn approximate(phi0: f64, delta: f64) -> Option<Clothoid> {
+    let a = guess(phi0, phi0 + delta);
+    let x = moments(a, delta, phi0).0;
+    (x > 0.0).then(|| finish(a, delta, x)).flatten()
+}
+
+/// Length and end curvatures for a root `a` of `g` with `X = ∫_0^1 cos θ = x`.
+fn finish(a: f64, delta: f64, x: f64) -> Option<Clothoid> {
     let length = 1.0 / x;
     let c = Clothoid {
         length,

@@ -34,12 +34,12 @@
 //! [`Error::NoHermiteSolution`] is returned; every returned segment is checked to meet the
 //! end conditions.
 
-use kurbo::common::GAUSS_LEGENDRE_COEFFS_16;
 use kurbo::{ParamCurve, Point};
 
 use super::bernstein;
 use super::clothoid;
-use super::segment::{check_weights, piece_count, IntrinsicSeg, MAX_TURNING};
+use super::quad::Rule;
+use super::segment::{check_weights, IntrinsicSeg, MAX_TURNING};
 use crate::Error;
 
 /// Newton iterations per solve.
@@ -49,6 +49,8 @@ const NEWTON_ITERATIONS: usize = 40;
 const RESIDUAL_TOLERANCE: f64 = 1e-13;
 /// A residual that stagnates (no step reduces it) is accepted below this.
 const STAGNATION_TOLERANCE: f64 = 1e-11;
+/// The largest change of any `A_i = L κ_i` (radians of turning) in one Newton step.
+const MAX_STEP_TURNING: f64 = 1.0;
 /// Halvings of the line search.
 const LINE_SEARCH_STEPS: usize = 30;
 /// The homotopy gives up when its step in λ falls below this.
@@ -309,10 +311,8 @@ struct Problem {
     /// The unknowns' indices.
     ia: usize,
     ib: usize,
-    /// The requested profile and the linear one the clothoid solves.
+    /// The requested profile.
     target: Rows,
-    linear: Rows,
-    clothoid: clothoid::Clothoid,
     /// The requested profile is the clothoid itself.
     is_clothoid: bool,
 }
@@ -370,30 +370,7 @@ impl Problem {
             g2.map(|(a, b)| (a * chord, b * chord)),
             chord,
         )?;
-        let clothoid = clothoid::solve(phi0, delta).ok_or(Error::NoHermiteSolution {
-            reason: "no clothoid meets the G1 data, so the solver has no start",
-        })?;
-        // The linear profile through the clothoid's curvature function.
-        let mut linear = target.clone();
-        let kc = |i: usize| clothoid.k0 + (clothoid.k1 - clothoid.k0) * i as f64 / n as f64;
-        for i in 0..=n {
-            let (alpha, beta, gamma) = if i == ia {
-                (1.0, 0.0, 0.0)
-            } else if i == ib {
-                (0.0, 1.0, 0.0)
-            } else if i < ia || i > ib {
-                (0.0, 0.0, kc(i))
-            } else {
-                let s = (i - ia) as f64 / (ib - ia) as f64;
-                (1.0 - s, s, 0.0)
-            };
-            linear.alpha[i] = alpha;
-            linear.beta[i] = beta;
-            linear.gamma[i] = gamma;
-        }
-        linear.weights = None;
-        let is_clothoid = g2.is_none() && profile.weights.is_none() && linear == target;
-        Ok(Problem {
+        let mut problem = Problem {
             origin: p0,
             chord,
             start_angle: h.start.angle,
@@ -402,31 +379,68 @@ impl Problem {
             ia,
             ib,
             target,
-            linear,
-            clothoid,
-            is_clothoid,
-        })
+            is_clothoid: false,
+        };
+        problem.is_clothoid = g2.is_none()
+            && profile.weights.is_none()
+            && problem.linear(clothoid::Clothoid::default()) == problem.target;
+        Ok(problem)
     }
 
-    /// The unknowns of the clothoid in the linear profile.
-    fn clothoid_start(&self) -> [f64; 3] {
-        let c = self.clothoid;
+    /// The linear profile through the clothoid `c`'s curvature function: the unknowns, linear
+    /// interpolation between them and, for G2, the clothoid's end curvatures at the ends.
+    fn linear(&self, c: clothoid::Clothoid) -> Rows {
         let n = self.target.alpha.len() - 1;
-        let kc = |i: usize| c.k0 + (c.k1 - c.k0) * i as f64 / n as f64;
-        [c.length * kc(self.ia), c.length * kc(self.ib), c.length]
+        let (ia, ib) = (self.ia, self.ib);
+        let mut linear = Rows {
+            alpha: vec![0.0; n + 1],
+            beta: vec![0.0; n + 1],
+            gamma: vec![0.0; n + 1],
+            weights: None,
+        };
+        for i in 0..=n {
+            if i < ia || i > ib {
+                linear.gamma[i] = c.at(i as f64 / n as f64);
+            } else {
+                let s = (i - ia) as f64 / (ib - ia) as f64;
+                linear.alpha[i] = 1.0 - s;
+                linear.beta[i] = s;
+            }
+        }
+        linear
+    }
+
+    /// The unknowns `(L κ(ia/n), L κ(ib/n), L)` of the clothoid `c` in the linear profile.
+    fn clothoid_start(&self, c: clothoid::Clothoid) -> [f64; 3] {
+        let n = (self.target.alpha.len() - 1) as f64;
+        [
+            c.length * c.at(self.ia as f64 / n),
+            c.length * c.at(self.ib as f64 / n),
+            c.length,
+        ]
     }
 
     fn solve(&self) -> Result<[f64; 3], Error> {
-        let start = self.clothoid_start();
+        let no_clothoid = Error::NoHermiteSolution {
+            reason: "no clothoid meets the G1 data, so the solver has no start",
+        };
         if self.is_clothoid {
-            return Ok(start);
+            let c = clothoid::solve(self.phi0, self.delta).ok_or(no_clothoid)?;
+            return Ok(self.clothoid_start(c));
         }
+        // Newton's method on the requested profile, from the clothoid of Bertolazzi &
+        // Frego's initial guess (it meets the end angles, not quite the end point).
         let mut work = Work::default();
-        if let Some(u) = newton(&self.target, self.phi0, self.delta, start, &mut work) {
-            return Ok(u);
+        if let Some(c) = clothoid::approximate(self.phi0, self.delta) {
+            let start = self.clothoid_start(c);
+            if let Some(u) = newton(&self.target, self.phi0, self.delta, start, &mut work) {
+                return Ok(u);
+            }
         }
         // Homotopy from the linear profile (solved by the clothoid) to the target.
-        let (mut lambda, mut u) = (0.0, start);
+        let c = clothoid::solve(self.phi0, self.delta).ok_or(no_clothoid)?;
+        let linear = self.linear(c);
+        let (mut lambda, mut u) = (0.0, self.clothoid_start(c));
         let mut prev: Option<(f64, [f64; 3])> = None;
         let mut step: f64 = 0.25;
         while lambda < 1.0 {
@@ -443,7 +457,7 @@ impl Problem {
                 }
                 _ => u,
             };
-            let rows = Rows::blend(&self.linear, &self.target, next);
+            let rows = Rows::blend(&linear, &self.target, next);
             let solved = newton(&rows, self.phi0, self.delta, guess, &mut work)
                 .or_else(|| newton(&rows, self.phi0, self.delta, u, &mut work));
             match solved {
@@ -547,28 +561,40 @@ fn target_rows(
 struct Work {
     nodes: Vec<[f64; 4]>,
     at_end: [f64; 3],
-    pieces: usize,
+    rule: Option<Rule>,
     scaled: Vec<f64>,
-    /// Scratch for the polynomial antiderivatives.
+    /// Scratch: the polynomial antiderivatives, or the weighted numerators.
     anti: [Vec<f64>; 3],
 }
 
 impl Work {
-    /// Tabulates the direction functions of `rows` on `pieces` pieces.
-    fn tabulate(&mut self, rows: &Rows, pieces: usize) {
-        self.pieces = pieces;
+    /// Makes sure the table of `rows` is at least as fine as `rule` (and not needlessly
+    /// finer): re-tabulates when it is not.
+    fn ensure(&mut self, rows: &Rows, rule: Rule) {
+        if let Some(have) = self.rule {
+            let fine_enough = have.coeffs.len() >= rule.coeffs.len() && have.pieces >= rule.pieces;
+            if fine_enough && have.len() <= 4 * rule.len() {
+                return;
+            }
+        }
+        self.tabulate(rows, rule);
+    }
+
+    /// Tabulates the direction functions of `rows` with `rule`.
+    fn tabulate(&mut self, rows: &Rows, rule: Rule) {
+        self.rule = Some(rule);
         self.nodes.clear();
-        self.nodes.reserve(pieces * GAUSS_LEGENDRE_COEFFS_16.len());
-        let h = 1.0 / pieces as f64;
+        self.nodes.reserve(rule.len());
+        let h = 1.0 / rule.pieces as f64;
+        let dirs = [&rows.alpha, &rows.beta, &rows.gamma];
         match &rows.weights {
             None => {
-                let dirs = [&rows.alpha, &rows.beta, &rows.gamma];
                 for (d, anti) in dirs.iter().zip(self.anti.iter_mut()) {
                     bernstein::antiderivative(d, anti);
                 }
-                for p in 0..pieces {
+                for p in 0..rule.pieces {
                     let mid = (p as f64 + 0.5) * h;
-                    for &(wi, xi) in GAUSS_LEGENDRE_COEFFS_16 {
+                    for &(wi, xi) in rule.coeffs {
                         let t = mid + 0.5 * h * xi;
                         self.nodes.push([
                             wi * 0.5 * h,
@@ -583,37 +609,39 @@ impl Work {
                 }
             }
             Some(w) => {
-                // Numerators Σ d_i w_i B_i for the three directions; M at the piece start is
-                // carried along, inner integrals by 16-point rules.
-                for (k, d) in [&rows.alpha, &rows.beta, &rows.gamma].iter().enumerate() {
-                    self.anti[k].clear();
-                    self.anti[k].extend(d.iter().zip(w).map(|(d, w)| d * w));
+                // M_d(τ) = ∫_0^τ Σ d_i w_i B_i / Σ w_i B_i: the integrands at the nodes of each
+                // piece, indefinite integrals at the nodes from the spectral matrix.
+                for (d, num) in dirs.iter().zip(self.anti.iter_mut()) {
+                    num.clear();
+                    num.extend(d.iter().zip(w).map(|(d, w)| d * w));
                 }
-                let integral = |num: &[f64], a: f64, b: f64| -> f64 {
-                    let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
-                    GAUSS_LEGENDRE_COEFFS_16
-                        .iter()
-                        .map(|&(wi, xi)| {
-                            let u = mid + half * xi;
-                            wi * bernstein::eval(num, u) / bernstein::eval(w, u)
-                        })
-                        .sum::<f64>()
-                        * half
-                };
+                let s = rule.matrix();
+                let m = rule.coeffs.len();
+                let mut f = [[0.0; 3]; 24];
                 let mut base = [0.0; 3];
-                for p in 0..pieces {
-                    let a = p as f64 * h;
-                    let mid = a + 0.5 * h;
-                    for &(wi, xi) in GAUSS_LEGENDRE_COEFFS_16 {
-                        let t = mid + 0.5 * h * xi;
-                        let mut node = [wi * 0.5 * h, 0.0, 0.0, 0.0];
-                        for k in 0..3 {
-                            node[k + 1] = base[k] + integral(&self.anti[k], a, t);
+                for p in 0..rule.pieces {
+                    let mid = (p as f64 + 0.5) * h;
+                    for (fj, &(_, xj)) in f.iter_mut().zip(rule.coeffs) {
+                        let t = mid + 0.5 * h * xj;
+                        let den = bernstein::eval(w, t);
+                        for (v, num) in fj.iter_mut().zip(&self.anti) {
+                            *v = bernstein::eval(num, t) / den;
+                        }
+                    }
+                    for (k, &(wk, _)) in rule.coeffs.iter().enumerate() {
+                        let row = &s[k * m..(k + 1) * m];
+                        let mut node = [wk * 0.5 * h, base[0], base[1], base[2]];
+                        for (sj, fj) in row.iter().zip(&f[..m]) {
+                            for d in 0..3 {
+                                node[d + 1] += 0.5 * h * sj * fj[d];
+                            }
                         }
                         self.nodes.push(node);
                     }
-                    for (b, num) in base.iter_mut().zip(&self.anti) {
-                        *b += integral(num, a, a + h);
+                    for (&(wj, _), fj) in rule.coeffs.iter().zip(&f[..m]) {
+                        for d in 0..3 {
+                            base[d] += 0.5 * h * wj * fj[d];
+                        }
                     }
                 }
                 self.at_end = base;
@@ -696,13 +724,10 @@ fn newton(
         if bound.is_nan() || bound > MAX_TURNING {
             return None;
         }
-        let pieces = piece_count(bound, rows.weights.as_deref());
-        if work.nodes.is_empty() || pieces > work.pieces || work.pieces > 4 * pieces.max(1) {
-            work.tabulate(rows, pieces);
-        }
+        work.ensure(rows, Rule::new(bound, rows.weights.as_deref()));
         Some(())
     };
-    work.nodes.clear();
+    work.rule = None;
     pieces_for(&u, work)?;
     let (mut e, mut j) = work.residual(phi0, delta, &u);
     let mut r = norm(&e);
@@ -711,7 +736,18 @@ fn newton(
             return Some(u);
         }
         let step = solve3(j, e)?;
-        let mut t = 1.0;
+        // Trust region: no control curvature's turning changes by more than
+        // MAX_STEP_TURNING and L by no more than half, so that Newton's method moves to a
+        // nearby solution instead of jumping to one that winds differently.
+        rows.scaled(&step, &mut work.scaled);
+        let turn = work.scaled.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+        let mut t: f64 = 1.0;
+        if turn > MAX_STEP_TURNING {
+            t = t.min(MAX_STEP_TURNING / turn);
+        }
+        if step[2].abs() > 0.5 * u[2] {
+            t = t.min(0.5 * u[2] / step[2].abs());
+        }
         let mut accepted = false;
         for _ in 0..LINE_SEARCH_STEPS {
             let v = [u[0] + t * step[0], u[1] + t * step[1], u[2] + t * step[2]];

@@ -4,8 +4,10 @@
 mod bernstein;
 mod clothoid;
 mod hermite;
+mod quad;
 mod roots;
 mod segment;
 
 pub use hermite::{Control, Hermite, HermiteEnd, Profile, Turning, END_TOLERANCE};
-pub use segment::{IntrinsicDeriv, IntrinsicDeriv2, IntrinsicSeg, MAX_TURNING, PIECE_TURN};
+pub use quad::PIECE_TURN;
+pub use segment::{IntrinsicDeriv, IntrinsicDeriv2, IntrinsicSeg, MAX_TURNING};

@@ -3,22 +3,16 @@
 
 use core::ops::Range;
 
-use kurbo::common::GAUSS_LEGENDRE_COEFFS_16;
 use kurbo::{
     CurveFitSample, ParamCurve, ParamCurveArclen, ParamCurveCurvature, ParamCurveDeriv,
     ParamCurveFit, Point, Vec2,
 };
 
 use super::bernstein;
+use super::quad::Rule;
 use super::roots::sign_changes;
 use crate::fit::{fit, FitOptions, Fitted};
 use crate::Error;
-
-/// The largest turning (radians) that one quadrature piece may see: the pieces are
-/// `1 / N` of the parameter range with `N = ⌈L · max|κ_i| / PIECE_TURN⌉`, so `cos θ` and
-/// `sin θ` vary by at most about a radian per piece, where 16-point Gauss–Legendre is
-/// accurate to rounding (the tests check 1e-13 of the length against a 4× finer rule).
-pub const PIECE_TURN: f64 = 1.0;
 
 /// The largest `L · max|κ_i|` (an upper bound of the total turning, in radians) a segment
 /// may have: about 16 000 turns, and as many quadrature pieces per 2π.
@@ -39,9 +33,13 @@ pub const MAX_TURNING: f64 = 1e5;
 /// `θ(τ) = θ_0 + L ∫_0^τ K`; for the polynomial case that is a Bernstein polynomial of degree
 /// `n + 1` with coefficients `θ_0 + L/(n+1) Σ_{i<j} κ_i` (seed 003 eq. 7–8), evaluated in
 /// closed form; for the rational case it is integrated by Gauss–Legendre quadrature. The
-/// position `P(τ) = P_0 + L ∫_0^τ (cos θ, sin θ)` (seed 003 eq. 5) is integrated with 16-point
-/// Gauss–Legendre rules on pieces over which the tangent turns by at most [`PIECE_TURN`];
-/// positions at the piece boundaries are cached, so one evaluation is a single 16-point rule.
+/// position `P(τ) = P_0 + L ∫_0^τ (cos θ, sin θ)` (seed 003 eq. 5) is integrated with
+/// Gauss–Legendre rules (24 points on pieces over which the tangent turns by at most
+/// [`super::PIECE_TURN`], 16 for a curve turning less than half a radian), accurate to about
+/// 1e-13 of the
+/// length; positions at the piece boundaries are cached, so one evaluation is a single rule.
+/// For a rational function the angle at the nodes comes from the rule's spectral
+/// integration matrix (exact for polynomials of degree below the rule's size).
 ///
 /// The curve parameter of the kurbo traits is `t = τ = s / L`: the parameterization is by
 /// arc length, the speed is `L` everywhere.
@@ -66,6 +64,8 @@ pub struct IntrinsicSeg {
     weighted: Vec<f64>,
     /// Position and tangent angle at `τ = p / N`, `p = 0..=N`.
     knots: Vec<(Point, f64)>,
+    /// The quadrature rule (N pieces).
+    rule: Rule,
 }
 
 impl IntrinsicSeg {
@@ -154,6 +154,7 @@ impl IntrinsicSeg {
             theta: Vec::new(),
             weighted: Vec::new(),
             knots: Vec::new(),
+            rule: Rule::new(0.0, None),
         };
         seg.cache(bound);
         Ok(seg)
@@ -172,7 +173,8 @@ impl IntrinsicSeg {
                 self.weighted = self.curvatures.iter().zip(w).map(|(k, w)| k * w).collect();
             }
         }
-        let pieces = piece_count(bound, self.weights.as_deref());
+        self.rule = Rule::new(bound, self.weights.as_deref());
+        let pieces = self.rule.pieces;
         self.knots.clear();
         self.knots.reserve(pieces + 1);
         self.knots.push((self.start, self.angle));
@@ -180,14 +182,9 @@ impl IntrinsicSeg {
         for p in 0..pieces {
             let a = p as f64 * h;
             let b = if p + 1 == pieces { 1.0 } else { a + h };
-            let (pa, ta) = self.knots[p];
-            let tb = if self.theta.is_empty() {
-                ta + self.length * self.rational_integral(a, b)
-            } else {
-                self.angle + bernstein::eval(&self.theta, b)
-            };
-            let pb = pa + self.chord_integral(p, a, b);
-            self.knots.push((pb, tb));
+            let (pa, _) = self.knots[p];
+            let (chord, tb) = self.piece_integral(p, a, b);
+            self.knots.push((pa + chord, tb));
         }
     }
 
@@ -232,7 +229,7 @@ impl IntrinsicSeg {
     pub fn curvature_at(&self, t: f64) -> f64 {
         match &self.weights {
             None => bernstein::eval(&self.curvatures, t),
-            Some(w) => bernstein::eval(&self.weighted, t) / bernstein::eval(w, t),
+            Some(w) => rational(&self.weighted, w, t),
         }
     }
 
@@ -261,7 +258,12 @@ impl IntrinsicSeg {
     pub fn angle_at(&self, t: f64) -> f64 {
         if self.theta.is_empty() {
             let (p, a) = self.piece_of(t);
-            self.knots[p].1 + self.length * self.rational_integral(a, t)
+            let (mid, half) = (0.5 * (a + t), 0.5 * (t - a));
+            let w = self.weights.as_deref().unwrap_or(&[]);
+            let sum: f64 = (self.rule.coeffs.iter())
+                .map(|&(wi, xi)| wi * rational(&self.weighted, w, mid + half * xi))
+                .sum();
+            self.knots[p].1 + self.length * half * sum
         } else {
             self.angle + bernstein::eval(&self.theta, t)
         }
@@ -319,34 +321,50 @@ impl IntrinsicSeg {
         (p, p as f64 / pieces as f64)
     }
 
-    /// `∫_a^b K_R` by 16-point Gauss–Legendre (rational case).
-    fn rational_integral(&self, a: f64, b: f64) -> f64 {
-        let w = self.weights.as_deref().unwrap_or(&[]);
-        let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
-        let mut sum = 0.0;
-        for &(wi, xi) in GAUSS_LEGENDRE_COEFFS_16 {
-            let u = mid + half * xi;
-            sum += wi * bernstein::eval(&self.weighted, u) / bernstein::eval(w, u);
-        }
-        sum * half
-    }
-
-    /// `L ∫_a^b (cos θ, sin θ)` by 16-point Gauss–Legendre, `a` the start of piece `p`.
-    fn chord_integral(&self, p: usize, a: f64, b: f64) -> Vec2 {
-        let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+    /// `(L ∫_a^t (cos θ, sin θ), θ(t))` by the segment's rule on `[a, t]`, `a` the start
+    /// of piece `p`. For a rational function the angles at the nodes are
+    /// `θ(a) + L ∫_a^{u_k} K_R`, from the spectral integration matrix.
+    fn piece_integral(&self, p: usize, a: f64, t: f64) -> (Vec2, f64) {
+        let (mid, half) = (0.5 * (a + t), 0.5 * (t - a));
+        let coeffs = self.rule.coeffs;
+        let m = coeffs.len();
         let mut sum = Vec2::ZERO;
-        for &(wi, xi) in GAUSS_LEGENDRE_COEFFS_16 {
-            let u = mid + half * xi;
-            let th = if self.theta.is_empty() {
-                self.knots[p].1 + self.length * self.rational_integral(a, u)
-            } else {
-                self.angle + bernstein::eval(&self.theta, u)
-            };
-            let (s, c) = th.sin_cos();
-            sum += wi * Vec2::new(c, s);
+        if self.theta.is_empty() {
+            let w = self.weights.as_deref().unwrap_or(&[]);
+            let mut f = [0.0; MAX_RULE];
+            for (fj, &(_, xj)) in f.iter_mut().zip(coeffs) {
+                *fj = rational(&self.weighted, w, mid + half * xj);
+            }
+            let s = self.rule.matrix();
+            let theta_a = self.knots[p].1;
+            let scale = self.length * half;
+            let mut total = 0.0;
+            for (k, &(wk, _)) in coeffs.iter().enumerate() {
+                let row = &s[k * m..(k + 1) * m];
+                let integral: f64 = row.iter().zip(&f[..m]).map(|(s, f)| s * f).sum();
+                let (sn, cs) = (theta_a + scale * integral).sin_cos();
+                sum += wk * Vec2::new(cs, sn);
+                total += wk * f[k];
+            }
+            (sum * (half * self.length), theta_a + scale * total)
+        } else {
+            for &(wi, xi) in coeffs {
+                let th = self.angle + bernstein::eval(&self.theta, mid + half * xi);
+                let (s, c) = th.sin_cos();
+                sum += wi * Vec2::new(c, s);
+            }
+            let end = self.angle + bernstein::eval(&self.theta, t);
+            (sum * (half * self.length), end)
         }
-        sum * (half * self.length)
     }
+}
+
+/// The largest table of a [`Rule`].
+const MAX_RULE: usize = 24;
+
+/// `K_R(τ) = Σ B_i w_i κ_i / Σ B_i w_i`, given `w_i κ_i` and `w_i`.
+fn rational(weighted: &[f64], w: &[f64], t: f64) -> f64 {
+    bernstein::eval(weighted, t) / bernstein::eval(w, t)
 }
 
 /// Checks weights: finite, positive, one per control curvature.
@@ -362,26 +380,12 @@ pub(crate) fn check_weights(w: &[f64], count: usize) -> Result<(), Error> {
     Ok(())
 }
 
-/// Quadrature pieces for a turning bound `L · max|κ_i|`: one per [`PIECE_TURN`], and for a
-/// rational function at least `2 ⌈log₂ ρ⌉` with `ρ` the ratio of the largest to the smallest
-/// weight (the curvature function itself varies faster as the weights spread).
-pub(crate) fn piece_count(bound: f64, weights: Option<&[f64]>) -> usize {
-    let mut pieces = (bound / PIECE_TURN).ceil().max(1.0);
-    if let Some(w) = weights {
-        let (lo, hi) = w.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &w| {
-            (lo.min(w), hi.max(w))
-        });
-        pieces = pieces.max(2.0 * (hi / lo).log2().ceil());
-    }
-    pieces.min(MAX_TURNING / PIECE_TURN + 1.0) as usize
-}
-
 impl ParamCurve for IntrinsicSeg {
     /// `P(t) = P_0 + L ∫_0^t (cos θ, sin θ)`: the cached position at the start of `t`'s
     /// piece plus one 16-point Gauss–Legendre rule.
     fn eval(&self, t: f64) -> Point {
         let (p, a) = self.piece_of(t);
-        self.knots[p].0 + self.chord_integral(p, a, t)
+        self.knots[p].0 + self.piece_integral(p, a, t).0
     }
 
     /// The curve on `range`, exactly: the curvature function restricted by de Casteljau
@@ -433,6 +437,7 @@ impl ParamCurve for IntrinsicSeg {
             theta: Vec::new(),
             weighted: Vec::new(),
             knots: Vec::new(),
+            rule: Rule::new(0.0, None),
         };
         seg.cache(bound);
         seg
@@ -598,26 +603,32 @@ mod tests {
 
     #[test]
     fn intrinsic_quadrature_converges() {
-        // A degree-5 curvature function turning several times: compare the cached end point
-        // with a rule on 8× as many pieces.
+        // Degree-5 curvature functions turning several times, polynomial and rational:
+        // compare the cached end point with a rule on 8× as many pieces.
         let k = [3.0, -7.0, 11.0, 2.0, -5.0, 9.0];
-        let seg = IntrinsicSeg::new(Point::ZERO, 0.3, 4.0, &k).unwrap();
-        let fine = 8 * (seg.knots.len() - 1);
-        let mut p = Vec2::ZERO;
-        for q in 0..fine {
-            let (a, b) = (q as f64 / fine as f64, (q + 1) as f64 / fine as f64);
-            let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
-            for &(wi, xi) in kurbo::common::GAUSS_LEGENDRE_COEFFS_32 {
-                let th = seg.angle_at(mid + half * xi);
-                p += wi * half * Vec2::from_angle(th);
+        let w = [1.0, 0.2, 3.0, 1.5, 0.4, 2.0];
+        for seg in [
+            IntrinsicSeg::new(Point::ZERO, 0.3, 4.0, &k).unwrap(),
+            IntrinsicSeg::rational(Point::ZERO, 0.3, 4.0, &k, &w).unwrap(),
+        ] {
+            let fine = 8 * (seg.knots.len() - 1);
+            let mut p = Vec2::ZERO;
+            for q in 0..fine {
+                let (a, b) = (q as f64 / fine as f64, (q + 1) as f64 / fine as f64);
+                let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+                for &(wi, xi) in kurbo::common::GAUSS_LEGENDRE_COEFFS_32 {
+                    let th = seg.angle_at(mid + half * xi);
+                    p += wi * half * Vec2::from_angle(th);
+                }
+            }
+            let p = (p * seg.length()).to_point();
+            let err = (p - seg.end()).hypot();
+            assert!(err < 1e-13 * seg.length(), "{err:e}");
+            for t in [0.1, 0.45, 0.8] {
+                let sub = seg.subsegment(0.0..t);
+                assert!((sub.end() - seg.eval(t)).hypot() < 1e-13 * seg.length());
             }
         }
-        let p = (p * seg.length()).to_point();
-        assert!(
-            (p - seg.end()).hypot() < 1e-13 * seg.length(),
-            "{p:?} {:?}",
-            seg.end()
-        );
     }
 
     #[test]
