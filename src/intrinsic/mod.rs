@@ -4,6 +4,8 @@
 mod bernstein;
 mod clothoid;
 mod hermite;
+#[cfg(feature = "render")]
+pub mod picture;
 mod quad;
 mod roots;
 mod segment;

@@ -4,7 +4,7 @@
 use core::ops::Range;
 
 use kurbo::{
-    CurveFitSample, ParamCurve, ParamCurveArclen, ParamCurveCurvature, ParamCurveDeriv,
+    BezPath, CurveFitSample, ParamCurve, ParamCurveArclen, ParamCurveCurvature, ParamCurveDeriv,
     ParamCurveFit, Point, Vec2,
 };
 
@@ -312,6 +312,43 @@ impl IntrinsicSeg {
     /// ([`crate::fit::fit`]), which also measures the distance reached.
     pub fn to_bezpath(&self, options: &FitOptions) -> Result<Fitted, Error> {
         fit(core::slice::from_ref(self), false, options)
+    }
+
+    /// A curvature comb from the exact curvature: `samples` teeth at uniform arc length
+    /// (both ends included), each from `P(t)` to `P(t) − scale · K(t) · n(t)` with `n` the left
+    /// normal — pointing away from the centre of curvature, `scale · |K|` long, as
+    /// [`crate::analysis::curvature_comb`] draws them — followed by the polyline through the
+    /// tips. Fewer than two samples or a non-finite scale give an empty path.
+    pub fn curvature_comb(&self, scale: f64, samples: usize) -> BezPath {
+        let mut out = BezPath::new();
+        if samples < 2 || !scale.is_finite() {
+            return out;
+        }
+        let teeth: Vec<(Point, Point)> = (0..samples)
+            .map(|j| {
+                let t = j as f64 / (samples - 1) as f64;
+                let p = self.eval(t);
+                let n = self.tangent_at(t).turn_90();
+                (p, p - scale * self.curvature_at(t) * n)
+            })
+            .collect();
+        for (j, &(base, tip)) in teeth.iter().enumerate() {
+            out.move_to(base);
+            out.line_to(tip);
+            if let Some(&(_, next)) = teeth.get(j + 1) {
+                out.line_to(next);
+            }
+        }
+        out
+    }
+
+    /// The largest `|K|` over the segment: at the ends and the curvature extrema.
+    pub fn max_abs_curvature(&self) -> f64 {
+        self.curvature_extrema()
+            .into_iter()
+            .chain([0.0, 1.0])
+            .map(|t| self.curvature_at(t).abs())
+            .fold(0.0, f64::max)
     }
 
     /// The knot index `p` of the piece holding `t` (clamped to the segment) and its start.
