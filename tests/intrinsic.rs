@@ -443,3 +443,39 @@ fn intrinsic_fitted_path_within_tolerance() {
         }
     }
 }
+
+/// An intrinsic spline through the points of a drawing: it interpolates them, its joints are
+/// G2 (position, tangent angle, curvature) and the curvatures at the points are those of the
+/// εκ-curve it was estimated from.
+#[test]
+fn intrinsic_spline_is_g2_and_interpolates() {
+    use kappa::intrinsic::{IntrinsicSpline, SplineOptions};
+    use kappa::{builtin_design, Design};
+    let design = Design::from_json(builtin_design("bear").unwrap()).unwrap();
+    let mut worst: f64 = 0.0;
+    for c in design.curves.iter().filter(|c| c.points.len() >= 3) {
+        let pts = c.kurbo_points();
+        let closed = c.is_closed();
+        let size = design.size();
+        let spline = IntrinsicSpline::new(&pts, closed, &SplineOptions::default())
+            .unwrap_or_else(|e| panic!("{e}"));
+        let segs = spline.segments();
+        assert_eq!(segs.len(), if closed { pts.len() } else { pts.len() - 1 });
+        for (i, seg) in segs.iter().enumerate() {
+            let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
+            worst = worst
+                .max(seg.start().distance(a) / size)
+                .max(seg.end().distance(b) / size);
+        }
+        let joints = if closed { segs.len() } else { segs.len() - 1 };
+        for i in 0..joints {
+            let (s, t) = (&segs[i], &segs[(i + 1) % segs.len()]);
+            let da = (s.end_angle() - t.start_angle()).rem_euclid(std::f64::consts::TAU);
+            let da = da.min(std::f64::consts::TAU - da);
+            assert!(da < 1e-9, "joint {i}: angle jump {da}");
+            let dk = (s.curvature_at(1.0) - t.curvature_at(0.0)).abs() * size;
+            assert!(dk < 1e-9, "joint {i}: curvature jump {dk}");
+        }
+    }
+    assert!(worst < 1e-9, "{worst}");
+}

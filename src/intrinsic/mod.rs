@@ -9,7 +9,9 @@ pub mod picture;
 mod quad;
 mod roots;
 mod segment;
+mod spline;
 
 pub use hermite::{Control, Hermite, HermiteEnd, Profile, Turning, END_TOLERANCE};
 pub use quad::PIECE_TURN;
 pub use segment::{IntrinsicDeriv, IntrinsicDeriv2, IntrinsicSeg, MAX_TURNING};
+pub use spline::{IntrinsicSpline, SplineOptions};
