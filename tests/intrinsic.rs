@@ -479,3 +479,49 @@ fn intrinsic_spline_is_g2_and_interpolates() {
     }
     assert!(worst < 1e-9, "{worst}");
 }
+
+/// The sampled viable region (seed 003 Fig. 4): the clothoid's own end curvatures are viable
+/// (the linear profile of any degree reproduces the clothoid, whose curvature is linear), every
+/// cell marked monotone is, and the region grows with the degree, as the paper reports.
+#[test]
+fn intrinsic_viable_region_grows_with_degree() {
+    use kappa::intrinsic::{viable_region, Viability};
+    let data = Hermite::g1(
+        Point::ZERO,
+        0.0,
+        Point::new(1.0, 0.4),
+        std::f64::consts::FRAC_PI_3,
+    );
+    let c = data.solve(&Profile::clothoid()).unwrap();
+    let (k0, k1) = (c.curvature_at(0.0), c.curvature_at(1.0));
+    let mut counts = Vec::new();
+    for degree in [3, 5, 10] {
+        // A grid through the clothoid's ends (k0, k1) at index (5, 5).
+        let r = viable_region(&data, degree, k0 - 0.5..k0 + 1.5, k1 - 2.5..k1 + 7.5, 21).unwrap();
+        assert_eq!(r.at(5, 5), Viability::Monotone, "degree {degree}");
+        assert_eq!(r.cells.len(), 21 * 21);
+        for j in 0..21 {
+            for i in 0..21 {
+                if r.at(i, j) == Viability::Monotone {
+                    let mut h = data;
+                    h.start.curvature = Some(r.k_start[i]);
+                    h.end.curvature = Some(r.k_end[j]);
+                    let seg = h.solve(&Profile::free(degree)).unwrap();
+                    // Dense check of monotone, sign-constant curvature.
+                    let ks: Vec<f64> = (0..=400)
+                        .map(|s| seg.curvature_at(s as f64 / 400.0))
+                        .collect();
+                    let inc = ks.windows(2).all(|w| w[1] >= w[0] - 1e-12);
+                    let dec = ks.windows(2).all(|w| w[1] <= w[0] + 1e-12);
+                    assert!(inc || dec, "degree {degree} ({i}, {j})");
+                    assert!(ks.iter().all(|k| *k >= -1e-12) || ks.iter().all(|k| *k <= 1e-12));
+                }
+            }
+        }
+        counts.push(r.count(Viability::Monotone));
+    }
+    assert!(counts[0] < counts[1] && counts[1] < counts[2], "{counts:?}");
+    assert!(viable_region(&data, 2, 0.0..1.0, 0.0..1.0, 5).is_err());
+    assert!(viable_region(&data, 3, 0.0..1.0, 0.0..1.0, 1).is_err());
+    assert!(viable_region(&data, 3, 1.0..0.0, 0.0..1.0, 5).is_err());
+}

@@ -10,8 +10,10 @@ mod quad;
 mod roots;
 mod segment;
 mod spline;
+mod viable;
 
 pub use hermite::{Control, Hermite, HermiteEnd, Profile, Turning, END_TOLERANCE};
 pub use quad::PIECE_TURN;
 pub use segment::{IntrinsicDeriv, IntrinsicDeriv2, IntrinsicSeg, MAX_TURNING};
 pub use spline::{IntrinsicSpline, SplineOptions};
+pub use viable::{viable_region, Viability, ViableRegion};
