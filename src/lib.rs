@@ -45,8 +45,10 @@
 //!
 //! # What is where
 //!
-//! - [`Spline`], [`Solver`]: κ-curves ([`Scheme::Kappa`]) and cubic εκ-curves
-//!   ([`Scheme::EkCubic`]), open and closed; [`Solver3`] for 3D points.
+//! - [`Spline`], [`Solver`]: κ-curves ([`Scheme::Kappa`]), cubic εκ-curves
+//!   ([`Scheme::EkCubic`]) and trigonometric εκ-curves ([`Scheme::EkTrig`]), open and closed;
+//!   [`Solver3`] for 3D points.
+//! - [`TrigBez`] ([`trig`]): curves of the generalized trigonometric basis of any degree.
 //! - [`analysis`]: curvature of Bézier segments of degree 1–4 in 2D and 3D, curvature
 //!   extrema, maxima of paths, continuity at joints, curvature combs.
 //! - [`fit`]: cubic Bézier paths for curves that are not polynomial, within a measured
@@ -94,12 +96,14 @@ mod point3;
 pub mod render;
 mod solver;
 mod spline;
+pub mod trig;
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
 
+pub use basis::Extremum;
 #[cfg(feature = "serde")]
 pub use design::{Design, DesignCurve};
 pub use designs::{builtin_design, BUILTIN_DESIGNS};
@@ -107,5 +111,6 @@ pub use error::Error;
 pub use point3::{Point3, Vec3};
 pub use spline::{
     Coords, Scheme, Segment, Shape, SolveOptions, SolveReport, Solver, Solver3, SolverN, Spline,
-    Spline3,
+    Spline3, EK_TRIG_DEFAULT_SHAPE,
 };
+pub use trig::TrigBez;

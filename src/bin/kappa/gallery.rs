@@ -4,7 +4,9 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Args;
-use kappa::gallery::{design_scene, paper_scenes, FIGURE_GAP, PAPER_VARIANTS};
+use kappa::gallery::{
+    design_scene, paper_scenes, variant_figure, FIGURE_GAP, PAPER_VARIANTS, TRIG_VARIANTS,
+};
 use kappa::render::{hstack, Pixmap};
 use kappa::Scheme;
 
@@ -13,6 +15,10 @@ use crate::failure::{self, Failure, Result};
 
 /// The drawings shown with all four variants.
 const FIGURE_DRAWINGS: [&str; 3] = ["bear", "elephant", "bird"];
+/// The drawings shown in the layout of the paper's Fig. 11 (κ, εκ-cubic, εκ-trig).
+const TRIG_DRAWINGS: [&str; 2] = ["eps-ClosedEkcurveKTM1", "rose"];
+/// Side of each panel of the Fig. 11 layout, in pixels.
+const TRIG_PANEL: u32 = 300;
 /// Side of each panel of the paper figures, in pixels.
 const FIGURE_PANEL: u32 = 360;
 /// Side of each panel of the overview of all drawings, in pixels.
@@ -31,6 +37,8 @@ const OVERVIEW_COLUMNS: usize = 3;
         <name>.png          bear, elephant and bird as a κ-curve and as εκ-curves with \
         a = 0.75, 0.85, 0.95 side by side\n  \
         <name>-<variant>.svg  one SVG per panel (variants kappa, ek-0.75, ek-0.85, ek-0.95)\n  \
+        <name>-trig.png     eps-ClosedEkcurveKTM1 and rose as in the paper's Fig. 11: κ, \
+        εκ-cubic with a = 0.75, 0.9 and εκ-trig with a = 0.55, 0.6, 0.75, 0.9\n  \
         drawings.png        all nine drawings of the εκ paper as κ-curves, in a 3 × 3 grid\n  \
         intrinsic-variety.png  one G1 problem met by six curvature profiles (intrinsic curves)\n  \
         intrinsic-viable.png   end curvatures admitting a monotone G2 segment, degrees 3, 5, 10\n\
@@ -71,6 +79,12 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
             hstack(&images, FIGURE_GAP).map_err(|e| Failure::new(format!("{name}: {e}")))?;
         write_png(&dir.join(format!("{name}.png")), &figure)?;
     }
+    for name in TRIG_DRAWINGS {
+        let design = builtin::load(name)?;
+        let figure = variant_figure(&design, &TRIG_VARIANTS, TRIG_PANEL)
+            .map_err(|e| Failure::new(format!("{name}: {e}")))?;
+        write_png(&dir.join(format!("{name}-trig.png")), &figure)?;
+    }
     let mut rows = Vec::new();
     for names in PAPER_DRAWINGS.chunks(OVERVIEW_COLUMNS) {
         let mut panels = Vec::with_capacity(names.len());
@@ -108,6 +122,7 @@ fn variant_name(scheme: Scheme, a: f64) -> String {
     match scheme {
         Scheme::Kappa => "kappa".to_owned(),
         Scheme::EkCubic => format!("ek-{a}"),
+        Scheme::EkTrig => format!("ek-trig-{a}"),
     }
 }
 
