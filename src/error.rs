@@ -72,6 +72,13 @@ pub enum Error {
     /// An SVG document could not be read.
     #[error("invalid SVG: {0}")]
     InvalidSvg(String),
+    /// No curve with the requested curvature profile meets the Hermite end conditions (for
+    /// example G2 end curvatures outside the profile's viable region).
+    #[error("no curve with this curvature profile meets the end conditions: {reason}")]
+    NoHermiteSolution {
+        /// Why the solver gave up.
+        reason: &'static str,
+    },
     /// The solver stopped at its iteration cap before reaching the tolerance.
     #[error("did not converge in {iterations} iterations (relative residual {residual:e})")]
     NotConverged {

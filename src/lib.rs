@@ -55,6 +55,9 @@
 //!   testing, warm re-solves).
 //! - [`fit`]: cubic Bézier paths for curves that are not polynomial, within a measured
 //!   tolerance.
+//! - [`intrinsic`]: curves whose curvature is an explicit (rational) Bézier function of arc
+//!   length — G1/G2 Hermite segments (degree 1: clothoids), inflection and monotonicity
+//!   checks, G2 splines through points, viable regions.
 //! - `render` (feature `render`): deterministic SVG/PNG pictures and golden-image comparison.
 //! - `gallery` (features `render` + `serde`): the paper-style figures.
 //! - [`BUILTIN_DESIGNS`]: the drawings of the εκ-curve paper, compiled in.
@@ -89,6 +92,7 @@ mod error;
 pub mod fit;
 #[cfg(all(feature = "render", feature = "serde"))]
 pub mod gallery;
+pub mod intrinsic;
 mod linalg;
 mod point3;
 #[cfg(feature = "render")]

@@ -23,6 +23,10 @@ const TRIG_PANEL: u32 = 300;
 const FIGURE_PANEL: u32 = 360;
 /// Side of each panel of the overview of all drawings, in pixels.
 const OVERVIEW_PANEL: u32 = 300;
+/// Side of each panel of the intrinsic-curve figures, in pixels.
+const INTRINSIC_PANEL: u32 = 260;
+/// Samples per axis of the viable-region figure.
+const VIABLE_SAMPLES: usize = 61;
 /// Panels per row of the overview.
 const OVERVIEW_COLUMNS: usize = 3;
 
@@ -35,7 +39,9 @@ const OVERVIEW_COLUMNS: usize = 3;
         <name>-<variant>.svg  one SVG per panel (variants kappa, ek-0.75, ek-0.85, ek-0.95)\n  \
         <name>-trig.png     eps-ClosedEkcurveKTM1 and rose as in the paper's Fig. 11: κ, \
         εκ-cubic with a = 0.75, 0.9 and εκ-trig with a = 0.55, 0.6, 0.75, 0.9\n  \
-        drawings.png        all nine drawings of the εκ paper as κ-curves, in a 3 × 3 grid\n\
+        drawings.png        all nine drawings of the εκ paper as κ-curves, in a 3 × 3 grid\n  \
+        intrinsic-variety.png  one G1 problem met by six curvature profiles (intrinsic curves)\n  \
+        intrinsic-viable.png   end curvatures admitting a monotone G2 segment, degrees 3, 5, 10\n\
         Prints the files written, one per line.",
     after_help = "Examples:\n  kappa gallery\n  kappa gallery --out docs/gallery"
 )]
@@ -102,6 +108,12 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
         rows.push(hstack(&panels, FIGURE_GAP).map_err(Failure::new)?);
     }
     write_png(&dir.join("drawings.png"), &vstack(&rows, FIGURE_GAP)?)?;
+    let variety =
+        kappa::intrinsic::picture::variety_figure(INTRINSIC_PANEL).map_err(Failure::new)?;
+    write_png(&dir.join("intrinsic-variety.png"), &variety)?;
+    let viable = kappa::intrinsic::picture::viable_figure(INTRINSIC_PANEL, VIABLE_SAMPLES)
+        .map_err(Failure::new)?;
+    write_png(&dir.join("intrinsic-viable.png"), &viable)?;
     Ok(ExitCode::SUCCESS)
 }
 

@@ -9,6 +9,7 @@ mod curve;
 mod diff;
 mod failure;
 mod gallery;
+mod hermite;
 mod picture;
 
 use std::process::ExitCode;
@@ -31,7 +32,8 @@ use failure::EXIT_ERROR;
         kappa curve --builtin bear --scheme ek-cubic --shape 0.85 --png bear.png\n  \
         kappa diff expected.png actual.png --out diff.png\n  \
         kappa bench --repeat 11\n  \
-        kappa gallery --out gallery"
+        kappa gallery --out gallery\n  \
+        echo '{\"start\": {\"point\": [0,0], \"angle\": 0}, \"end\": {\"point\": [10,4], \"angle\": 1.2}, \"degree\": 3}' | kappa hermite"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -44,6 +46,7 @@ enum Command {
     Diff(diff::DiffArgs),
     Bench(bench::BenchArgs),
     Gallery(gallery::GalleryArgs),
+    Hermite(hermite::HermiteArgs),
 }
 
 fn main() -> ExitCode {
@@ -57,6 +60,7 @@ fn main() -> ExitCode {
         Command::Diff(args) => diff::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Gallery(args) => gallery::run(args),
+        Command::Hermite(args) => hermite::run(args),
     });
     match result {
         Ok(Ok(code)) => code,
