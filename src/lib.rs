@@ -113,7 +113,7 @@ pub use designs::{builtin_design, BUILTIN_DESIGNS};
 pub use error::Error;
 pub use point3::{Point3, Vec3};
 pub use spline::{
-    Coords, Scheme, Segment, Shape, SolveOptions, SolveReport, Solver, Solver3, SolverN, Spline,
-    Spline3, EK_TRIG_DEFAULT_SHAPE,
+    svg_path_data, Coords, Scheme, Segment, Shape, SolveOptions, SolveReport, Solver, Solver3,
+    SolverN, Spline, Spline3, EK_TRIG_DEFAULT_SHAPE,
 };
 pub use trig::TrigBez;

@@ -455,31 +455,7 @@ impl Spline<Point> {
     /// SVG path data of [`Spline::to_bezpath`]: the shortest decimal that reads back to the
     /// same `f64`, in exponent form where that is shorter (`1e300`, not 301 digits).
     pub fn to_svg(&self) -> String {
-        use kurbo::PathEl;
-        use std::fmt::Write as _;
-        let mut out = String::new();
-        let mut put = |cmd: char, pts: &[Point]| {
-            if !out.is_empty() {
-                out.push(' ');
-            }
-            out.push(cmd);
-            for (i, p) in pts.iter().enumerate() {
-                if i > 0 {
-                    out.push(' ');
-                }
-                let _ = write!(out, "{},{}", svg_number(p.x), svg_number(p.y));
-            }
-        };
-        for el in self.to_bezpath().elements() {
-            match *el {
-                PathEl::MoveTo(p) => put('M', &[p]),
-                PathEl::LineTo(p) => put('L', &[p]),
-                PathEl::QuadTo(p1, p2) => put('Q', &[p1, p2]),
-                PathEl::CurveTo(p1, p2, p3) => put('C', &[p1, p2, p3]),
-                PathEl::ClosePath => put('Z', &[]),
-            }
-        }
-        out
+        svg_path_data(&self.to_bezpath())
     }
 }
 
@@ -499,6 +475,37 @@ fn path_seg_derivs(seg: &PathSeg, t: f64) -> (Point, kurbo::Vec2, kurbo::Vec2) {
             c.deriv().deriv().eval(t).to_vec2(),
         ),
     }
+}
+
+/// SVG path data of any kurbo path: absolute commands, and for every number the shortest
+/// decimal that reads back to the same `f64`, in exponent form where that is shorter
+/// (`1e300`, not 301 digits; `6.9e-18`, not 22 digits).
+pub fn svg_path_data(path: &BezPath) -> String {
+    use kurbo::PathEl;
+    use std::fmt::Write as _;
+    let mut out = String::new();
+    let mut put = |cmd: char, pts: &[Point]| {
+        if !out.is_empty() {
+            out.push(' ');
+        }
+        out.push(cmd);
+        for (i, p) in pts.iter().enumerate() {
+            if i > 0 {
+                out.push(' ');
+            }
+            let _ = write!(out, "{},{}", svg_number(p.x), svg_number(p.y));
+        }
+    };
+    for el in path.elements() {
+        match *el {
+            PathEl::MoveTo(p) => put('M', &[p]),
+            PathEl::LineTo(p) => put('L', &[p]),
+            PathEl::QuadTo(p1, p2) => put('Q', &[p1, p2]),
+            PathEl::CurveTo(p1, p2, p3) => put('C', &[p1, p2, p3]),
+            PathEl::ClosePath => put('Z', &[]),
+        }
+    }
+    out
 }
 
 /// A number for SVG: Rust's shortest round-trip decimal, or its exponent form when shorter.

@@ -21,7 +21,7 @@ mod svg;
 #[cfg(feature = "render")]
 pub use svg::import_svg;
 
-use kurbo::{BezPath, PathEl, Point};
+use kurbo::{BezPath, Point};
 
 use crate::fit::{FitMethod, FitOptions};
 use crate::{Error, Scheme, Segment, Shape, Solver, Spline};
@@ -615,22 +615,11 @@ impl Editor {
     /// with its points.
     pub fn to_svg(&self, width: f64, height: f64, with_points: bool) -> String {
         use core::fmt::Write as _;
-        let mut d = String::new();
-        for el in self.to_bezpath().elements() {
-            let _ = match *el {
-                PathEl::MoveTo(p) => write!(d, "M{},{} ", p.x, p.y),
-                PathEl::LineTo(p) => write!(d, "L{},{} ", p.x, p.y),
-                PathEl::QuadTo(a, b) => write!(d, "Q{},{} {},{} ", a.x, a.y, b.x, b.y),
-                PathEl::CurveTo(a, b, c) => {
-                    write!(d, "C{},{} {},{} {},{} ", a.x, a.y, b.x, b.y, c.x, c.y)
-                }
-                PathEl::ClosePath => write!(d, "Z "),
-            };
-        }
+        let d = crate::svg_path_data(&self.to_bezpath());
         let mut out = format!(
             "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" \
              viewBox=\"0 0 {width} {height}\">\n<path d=\"{}\" fill=\"none\" stroke=\"black\"/>\n",
-            d.trim_end()
+            d
         );
         if with_points {
             for q in &self.doc.points {

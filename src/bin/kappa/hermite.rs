@@ -153,7 +153,7 @@ pub fn run(args: &HermiteArgs) -> Result<ExitCode> {
         end_error: hermite.end_error(&seg),
         inflections: seg.inflections(),
         monotone: seg.is_monotone(),
-        svg_path: fitted.path.to_svg(),
+        svg_path: kappa::svg_path_data(&fitted.path),
     };
     let mut json =
         serde_json::to_string(&out).map_err(|e| Failure::new(format!("cannot write JSON: {e}")))?;
