@@ -49,6 +49,8 @@
 //!   ([`Scheme::EkCubic`]), open and closed; [`Solver3`] for 3D points.
 //! - [`analysis`]: curvature of Bézier segments of degree 1–4 in 2D and 3D, curvature
 //!   extrema, maxima of paths, continuity at joints, curvature combs.
+//! - [`space`]: κ-space curves, G2 in 3D ([`SpaceCurve`]): the 3D κ-curve with a quartic at
+//!   every joint, projections to 2D, JSON and OBJ export, pictures from several views.
 //! - [`fit`]: cubic Bézier paths for curves that are not polynomial, within a measured
 //!   tolerance.
 //! - `render` (feature `render`): deterministic SVG/PNG pictures and golden-image comparison.
@@ -89,6 +91,7 @@ mod point3;
 #[cfg(feature = "render")]
 pub mod render;
 mod solver;
+pub mod space;
 mod spline;
 
 /// The README's examples, compiled and run as doctests.
@@ -101,6 +104,7 @@ pub use design::{Design, DesignCurve};
 pub use designs::{builtin_design, BUILTIN_DESIGNS};
 pub use error::Error;
 pub use point3::{Point3, Vec3};
+pub use space::{SpaceCurve, SpaceOptions};
 pub use spline::{
     Coords, Scheme, Segment, Shape, SolveOptions, SolveReport, Solver, Solver3, SolverN, Spline,
     Spline3,
