@@ -556,6 +556,8 @@ fn cli_gallery() {
         }
     }
     expected.push("drawings.png".to_owned());
+    expected.push("space-helix.png".to_owned());
+    expected.push("space-trefoil.png".to_owned());
     assert_eq!(printed.len(), expected.len(), "{printed:?}");
     for file in &expected {
         let path = dir.join("sub").join(file);

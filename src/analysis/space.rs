@@ -131,7 +131,7 @@ impl SpaceBez {
     /// The torsion `τ = ((r′ × r″) · r‴) / |r′ × r″|²` at `t`: the rate at which the
     /// osculating plane turns about the tangent, positive for a right-handed helix. It is 0
     /// for segments of degree ≤ 2 (they are planar) and, by convention, where the curvature
-    /// vanishes (`|r′ × r″| ≤ TORSION_FLAT · |r′| |r″|`: no osculating plane).
+    /// vanishes (`|r′ × r″| ≤ 1e-12 · |r′| |r″|`: no osculating plane).
     pub fn torsion(&self, t: f64) -> f64 {
         if self.degree() < 3 {
             return 0.0;
@@ -153,7 +153,7 @@ impl SpaceBez {
 
     /// The arc length, to within `accuracy` (absolute): Gauss–Legendre quadrature of `|r′|`
     /// with 16 nodes, bisecting where 8 nodes disagree with 16 by more than the share of the
-    /// accuracy of that piece (at most [`ARCLEN_MAX_DEPTH`] levels deep). A non-positive or
+    /// accuracy of that piece (at most 20 levels deep). A non-positive or
     /// NaN accuracy is taken as `1e-9` of the control polygon's length.
     pub fn arclen(&self, accuracy: f64) -> f64 {
         let h = self.deriv();
@@ -195,10 +195,10 @@ impl SpaceBez {
 
 /// Below this value of `|r′ × r″| / (|r′| |r″|)` (the sine of the angle between the first two
 /// derivatives) a segment counts as straight at that parameter and its torsion as 0.
-pub const TORSION_FLAT: f64 = 1e-12;
+const TORSION_FLAT: f64 = 1e-12;
 
 /// The deepest bisection of [`SpaceBez::arclen`] (2⁻²⁰ of the parameter range).
-pub const ARCLEN_MAX_DEPTH: usize = 20;
+const ARCLEN_MAX_DEPTH: usize = 20;
 
 /// `∫_a^b |h(t)| dt` for the hodograph `h`, adaptively.
 fn arclen_rec(h: &SpaceBez, a: f64, b: f64, accuracy: f64, depth: usize) -> f64 {

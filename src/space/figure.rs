@@ -76,7 +76,7 @@ impl SpaceCurve {
     /// The 3D curvature comb seen through `projection`: teeth from curve points `p` to
     /// `p − scale · k` (`k` the curvature vector, so teeth point away from the centre of
     /// curvature), projected, with the outline through the tips; the same layout as
-    /// [`crate::analysis::curvature_comb`]. The curve gets [`COMB_SAMPLES`] teeth per
+    /// [`crate::analysis::curvature_comb`]. The curve gets 16 teeth per
     /// κ-segment, shared out by arc length (uniform in `t` within a segment, both ends of
     /// every segment included, so a short quartic gets just its two ends). Teeth that do not
     /// project (behind a perspective eye) are left out.

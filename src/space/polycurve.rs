@@ -52,12 +52,14 @@ pub struct Joint {
     pub before: usize,
     /// The κ-curve's joint ratio: the joint is `(1−λ) c_{i,1} + λ c_{i+1,1}` (seed 004 eq. 7).
     pub lambda: f64,
-    /// Start of the replaced piece on segment `before`, after cutting at its input point.
+    /// Start of the replaced piece on segment `before`, after cutting at that segment's input
+    /// point (at `t = ½` if the point was given up, see [`PeakAtJoint`]); 1 for a kept joint.
     pub t1: f64,
-    /// End of the replaced piece on segment `before + 1`, after cutting at its input point.
+    /// End of the replaced piece on segment `before + 1`, cut likewise; 0 for a kept joint.
     pub t2: f64,
-    /// The replacement, or `None` where the joint was kept: no replacement was asked for, the
-    /// range is empty after cutting, or a quadratic stalls at the joint (`λ ∈ {0, 1}`).
+    /// The replacement, or `None` where the joint was kept: no replacement was asked for, an
+    /// input point sits at the joint and [`PeakAtJoint::Keep`] was chosen, or a quadratic
+    /// stalls at the joint (`λ ∈ {0, 1}`, no quartic exists).
     pub quartic: Option<JointQuartic>,
 }
 

@@ -10,6 +10,7 @@ mod diff;
 mod failure;
 mod gallery;
 mod picture;
+mod space;
 
 use std::process::ExitCode;
 
@@ -31,6 +32,7 @@ use failure::EXIT_ERROR;
         kappa curve --builtin bear --scheme ek-cubic --shape 0.85 --png bear.png\n  \
         kappa diff expected.png actual.png --out diff.png\n  \
         kappa bench --repeat 11\n  \
+        echo '{\"points\": [[0,0,0],[100,0,30],[100,100,0],[0,100,30]]}' | kappa space\n  \
         kappa gallery --out gallery"
 )]
 struct Cli {
@@ -44,6 +46,7 @@ enum Command {
     Diff(diff::DiffArgs),
     Bench(bench::BenchArgs),
     Gallery(gallery::GalleryArgs),
+    Space(space::SpaceArgs),
 }
 
 fn main() -> ExitCode {
@@ -57,6 +60,7 @@ fn main() -> ExitCode {
         Command::Diff(args) => diff::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Gallery(args) => gallery::run(args),
+        Command::Space(args) => space::run(args),
     });
     match result {
         Ok(Ok(code)) => code,
