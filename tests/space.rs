@@ -296,6 +296,29 @@ fn helix_and_trefoil_are_g2_with_their_peaks_in_place() {
                 assert!(curve.segments()[inner].iter().all(|s| s.degree() == 4));
                 let m = check_curve_without_peaks(&curve, &pts, closed);
                 assert_eq!(m.above_1e9, 0);
+                // The peaks leave the points (seed 004 Fig. 4: "the positions of the curvature
+                // extrema are not preserved"): count the points that are no longer a local
+                // maximum of |κ| along the chain.
+                let n = curve.len();
+                let moved = curve
+                    .point_params()
+                    .iter()
+                    .filter(|&&(seg, t)| {
+                        let u = seg as f64 + t;
+                        let k = curve.curvature(u);
+                        let before = if u > 0.0 || closed {
+                            curve.curvature((u - 1e-4).rem_euclid(n as f64))
+                        } else {
+                            0.0
+                        };
+                        k < curve.curvature(u + 1e-4).max(before)
+                    })
+                    .count();
+                println!(
+                    "full replacement: {moved} of {} points no longer a peak",
+                    curve.point_params().len()
+                );
+                assert!(moved > 0);
             } else {
                 let m = check_curve(&curve, &pts, closed, "helix/trefoil");
                 assert_eq!(m.above_1e9, 0, "{m:?}");
@@ -1326,4 +1349,58 @@ mod cli {
             assert!(err.contains(needle), "{args:?}: {err}");
         }
     }
+}
+
+#[test]
+fn small_and_degenerate_inputs() {
+    let d = SpaceOptions::default();
+    // Two points: one straight segment; three open points: one quadratic; no joints.
+    let two = [Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 2.0, 3.0)];
+    let c = SpaceCurve::new(&two, false, &d).unwrap();
+    assert_eq!((c.len(), c.joints().len()), (1, 0));
+    assert_eq!(c.ends(), (two[0], two[1]));
+    let three = [
+        Point3::new(0.0, 0.0, 0.0),
+        Point3::new(1.0, 2.0, 3.0),
+        Point3::new(3.0, 1.0, 0.0),
+    ];
+    let c = SpaceCurve::new(&three, false, &d).unwrap();
+    assert_eq!((c.len(), c.joints().len()), (1, 0));
+    check_curve(&c, &three, false, "three open");
+    // Three closed points: three quadratics, three quartics.
+    let c = SpaceCurve::new(&three, true, &d).unwrap();
+    assert_eq!((c.len(), c.joints().len()), (6, 3));
+    check_curve(&c, &three, true, "three closed");
+    // Points on a line (open): straight pieces, straight quartics, κ ≡ 0, no torsion; seen
+    // along the line the curve is a single point, and the projection still works.
+    let line: Vec<Point3> = (0..5).map(|i| Point3::new(0.0, 0.0, i as f64)).collect();
+    let c = SpaceCurve::new(&line, false, &d).unwrap();
+    assert_eq!(c.joints().iter().filter(|j| j.quartic.is_some()).count(), 2);
+    for u in [0.3, 1.5, 2.7] {
+        assert_eq!(c.curvature(u), 0.0);
+        assert_eq!(c.torsion(u), 0.0);
+    }
+    assert!(c.curvature_vector_gaps().iter().all(|&g| g == 0.0));
+    let top = c.project(&Projection::Orthographic(View::TOP), &FitOptions::default());
+    let top = top.unwrap();
+    assert!(top
+        .path
+        .elements()
+        .iter()
+        .all(|e| e.end_point().map_or(true, |q| q == Point::ZERO)));
+    // A curve whose tangent points along the view somewhere: a cusp in the picture.
+    let hook = [
+        Point3::new(0.0, 0.0, 0.0),
+        Point3::new(10.0, 0.0, 5.0),
+        Point3::new(10.0, 0.0, 15.0),
+        Point3::new(0.0, 1.0, 20.0),
+    ];
+    let c = SpaceCurve::new(&hook, false, &d).unwrap();
+    let front = c
+        .project(
+            &Projection::Orthographic(View::FRONT),
+            &FitOptions::relative(1e-5),
+        )
+        .unwrap();
+    assert!(front.max_distance <= front.tolerance);
 }

@@ -472,7 +472,8 @@ impl SpaceCurve {
                 if scale > 0.0 {
                     j.continuity.curvature_vector_diff / scale
                 } else {
-                    j.continuity.curvature_vector_diff
+                    // Straight on both sides: what is left of the vectors is rounding.
+                    0.0
                 }
             })
             .collect()
