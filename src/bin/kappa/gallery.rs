@@ -4,7 +4,9 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Args;
-use kappa::gallery::{design_scene, paper_scenes, FIGURE_GAP, PAPER_VARIANTS};
+use kappa::gallery::{
+    design_scene, paper_scenes, variant_figure, FIGURE_GAP, PAPER_VARIANTS, TRIG_VARIANTS,
+};
 use kappa::render::{hstack, Pixmap};
 use kappa::space::views_figure;
 use kappa::{Point3, Scheme, SpaceCurve, SpaceOptions};
@@ -14,12 +16,20 @@ use crate::failure::{self, Failure, Result};
 
 /// The drawings shown with all four variants.
 const FIGURE_DRAWINGS: [&str; 3] = ["bear", "elephant", "bird"];
+/// The drawings shown in the layout of the paper's Fig. 11 (κ, εκ-cubic, εκ-trig).
+const TRIG_DRAWINGS: [&str; 2] = ["eps-ClosedEkcurveKTM1", "rose"];
+/// Side of each panel of the Fig. 11 layout, in pixels.
+const TRIG_PANEL: u32 = 300;
 /// Side of each panel of the paper figures, in pixels.
 const FIGURE_PANEL: u32 = 360;
 /// Side of each panel of the overview of all drawings, in pixels.
 const OVERVIEW_PANEL: u32 = 300;
 /// Side of each panel of the κ-space curve figures (four views side by side), in pixels.
 const SPACE_PANEL: u32 = 300;
+/// Side of each panel of the intrinsic-curve figures, in pixels.
+const INTRINSIC_PANEL: u32 = 260;
+/// Samples per axis of the viable-region figure.
+const VIABLE_SAMPLES: usize = 61;
 /// Panels per row of the overview.
 const OVERVIEW_COLUMNS: usize = 3;
 
@@ -30,7 +40,11 @@ const OVERVIEW_COLUMNS: usize = 3;
         <name>.png          bear, elephant and bird as a κ-curve and as εκ-curves with \
         a = 0.75, 0.85, 0.95 side by side\n  \
         <name>-<variant>.svg  one SVG per panel (variants kappa, ek-0.75, ek-0.85, ek-0.95)\n  \
+        <name>-trig.png     eps-ClosedEkcurveKTM1 and rose as in the paper's Fig. 11: κ, \
+        εκ-cubic with a = 0.75, 0.9 and εκ-trig with a = 0.55, 0.6, 0.75, 0.9\n  \
         drawings.png        all nine drawings of the εκ paper as κ-curves, in a 3 × 3 grid\n  \
+        intrinsic-variety.png  one G1 problem met by six curvature profiles (intrinsic curves)\n  \
+        intrinsic-viable.png   end curvatures admitting a monotone G2 segment, degrees 3, 5, 10\n  \
         space-helix.png, space-trefoil.png  κ-space curves from the top, front, side and \
         isometrically\n\
         Prints the files written, one per line.",
@@ -70,6 +84,12 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
             hstack(&images, FIGURE_GAP).map_err(|e| Failure::new(format!("{name}: {e}")))?;
         write_png(&dir.join(format!("{name}.png")), &figure)?;
     }
+    for name in TRIG_DRAWINGS {
+        let design = builtin::load(name)?;
+        let figure = variant_figure(&design, &TRIG_VARIANTS, TRIG_PANEL)
+            .map_err(|e| Failure::new(format!("{name}: {e}")))?;
+        write_png(&dir.join(format!("{name}-trig.png")), &figure)?;
+    }
     let mut rows = Vec::new();
     for names in PAPER_DRAWINGS.chunks(OVERVIEW_COLUMNS) {
         let mut panels = Vec::with_capacity(names.len());
@@ -100,6 +120,12 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
             views_figure(&curve, SPACE_PANEL).map_err(|e| Failure::new(format!("{name}: {e}")))?;
         write_png(&dir.join(format!("{name}.png")), &figure)?;
     }
+    let variety =
+        kappa::intrinsic::picture::variety_figure(INTRINSIC_PANEL).map_err(Failure::new)?;
+    write_png(&dir.join("intrinsic-variety.png"), &variety)?;
+    let viable = kappa::intrinsic::picture::viable_figure(INTRINSIC_PANEL, VIABLE_SAMPLES)
+        .map_err(Failure::new)?;
+    write_png(&dir.join("intrinsic-viable.png"), &viable)?;
     Ok(ExitCode::SUCCESS)
 }
 
@@ -133,6 +159,7 @@ fn variant_name(scheme: Scheme, a: f64) -> String {
     match scheme {
         Scheme::Kappa => "kappa".to_owned(),
         Scheme::EkCubic => format!("ek-{a}"),
+        Scheme::EkTrig => format!("ek-trig-{a}"),
     }
 }
 
