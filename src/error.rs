@@ -59,6 +59,19 @@ pub enum Error {
         /// The number of shape parameters given.
         got: usize,
     },
+    /// The `γ` of a κ-space curve's joint lies outside the open interval where its quartic
+    /// exists (`(λ t1, λ + (1 − λ) t2)`, seed 004 eqs. 17, 18), or is not finite.
+    #[error("gamma of joint {joint} is {value}, outside ({min}, {max})")]
+    GammaOutOfRange {
+        /// Index of the joint.
+        joint: usize,
+        /// The value given.
+        value: f64,
+        /// The lower bound (excluded).
+        min: f64,
+        /// The upper bound (excluded).
+        max: f64,
+    },
     /// A solver option (tolerance, iteration cap, ...) is not usable.
     #[error("invalid option: {0}")]
     InvalidOption(&'static str),

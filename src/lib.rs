@@ -51,6 +51,8 @@
 //! - [`TrigBez`] ([`trig`]): curves of the generalized trigonometric basis of any degree.
 //! - [`analysis`]: curvature of Bézier segments of degree 1–4 in 2D and 3D, curvature
 //!   extrema, maxima of paths, continuity at joints, curvature combs.
+//! - [`space`]: κ-space curves, G2 in 3D ([`SpaceCurve`]): the 3D κ-curve with a quartic at
+//!   every joint, projections to 2D, JSON and OBJ export, pictures from several views.
 //! - [`editor`]: the engine of a curvature-pen path tool (edits, corners, undo/redo, hit
 //!   testing, warm re-solves).
 //! - [`fit`]: cubic Bézier paths for curves that are not polynomial, within a measured
@@ -98,6 +100,7 @@ mod point3;
 #[cfg(feature = "render")]
 pub mod render;
 mod solver;
+pub mod space;
 mod spline;
 pub mod trig;
 
@@ -112,6 +115,7 @@ pub use design::{Design, DesignCurve};
 pub use designs::{builtin_design, BUILTIN_DESIGNS};
 pub use error::Error;
 pub use point3::{Point3, Vec3};
+pub use space::{SpaceCurve, SpaceOptions};
 pub use spline::{
     svg_path_data, Coords, Scheme, Segment, Shape, SolveOptions, SolveReport, Solver, Solver3,
     SolverN, Spline, Spline3, EK_TRIG_DEFAULT_SHAPE,

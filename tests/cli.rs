@@ -623,6 +623,8 @@ fn cli_gallery() {
         expected.push(format!("{name}-trig.png"));
     }
     expected.push("drawings.png".to_owned());
+    expected.push("space-helix.png".to_owned());
+    expected.push("space-trefoil.png".to_owned());
     expected.push("intrinsic-variety.png".to_owned());
     expected.push("intrinsic-viable.png".to_owned());
     assert_eq!(printed.len(), expected.len(), "{printed:?}");

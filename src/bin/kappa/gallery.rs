@@ -8,7 +8,8 @@ use kappa::gallery::{
     design_scene, paper_scenes, variant_figure, FIGURE_GAP, PAPER_VARIANTS, TRIG_VARIANTS,
 };
 use kappa::render::{hstack, Pixmap};
-use kappa::Scheme;
+use kappa::space::views_figure;
+use kappa::{Point3, Scheme, SpaceCurve, SpaceOptions};
 
 use crate::builtin::{self, PAPER_DRAWINGS};
 use crate::failure::{self, Failure, Result};
@@ -23,6 +24,8 @@ const TRIG_PANEL: u32 = 300;
 const FIGURE_PANEL: u32 = 360;
 /// Side of each panel of the overview of all drawings, in pixels.
 const OVERVIEW_PANEL: u32 = 300;
+/// Side of each panel of the κ-space curve figures (four views side by side), in pixels.
+const SPACE_PANEL: u32 = 300;
 /// Side of each panel of the intrinsic-curve figures, in pixels.
 const INTRINSIC_PANEL: u32 = 260;
 /// Samples per axis of the viable-region figure.
@@ -41,7 +44,9 @@ const OVERVIEW_COLUMNS: usize = 3;
         εκ-cubic with a = 0.75, 0.9 and εκ-trig with a = 0.55, 0.6, 0.75, 0.9\n  \
         drawings.png        all nine drawings of the εκ paper as κ-curves, in a 3 × 3 grid\n  \
         intrinsic-variety.png  one G1 problem met by six curvature profiles (intrinsic curves)\n  \
-        intrinsic-viable.png   end curvatures admitting a monotone G2 segment, degrees 3, 5, 10\n\
+        intrinsic-viable.png   end curvatures admitting a monotone G2 segment, degrees 3, 5, 10\n  \
+        space-helix.png, space-trefoil.png  κ-space curves from the top, front, side and \
+        isometrically\n\
         Prints the files written, one per line.",
     after_help = "Examples:\n  kappa gallery\n  kappa gallery --out docs/gallery"
 )]
@@ -108,6 +113,13 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
         rows.push(hstack(&panels, FIGURE_GAP).map_err(Failure::new)?);
     }
     write_png(&dir.join("drawings.png"), &vstack(&rows, FIGURE_GAP)?)?;
+    for (name, points, closed) in space_inputs() {
+        let curve = SpaceCurve::new(&points, closed, &SpaceOptions::default())
+            .map_err(|e| Failure::new(format!("{name}: {e}")))?;
+        let figure =
+            views_figure(&curve, SPACE_PANEL).map_err(|e| Failure::new(format!("{name}: {e}")))?;
+        write_png(&dir.join(format!("{name}.png")), &figure)?;
+    }
     let variety =
         kappa::intrinsic::picture::variety_figure(INTRINSIC_PANEL).map_err(Failure::new)?;
     write_png(&dir.join("intrinsic-variety.png"), &variety)?;
@@ -115,6 +127,31 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
         .map_err(Failure::new)?;
     write_png(&dir.join("intrinsic-viable.png"), &viable)?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// The κ-space curves of the gallery: points on a helix (open) and on a trefoil knot
+/// (closed), the inputs of the golden images `tests/golden/space-*.png`.
+fn space_inputs() -> [(&'static str, Vec<Point3>, bool); 2] {
+    let helix = (0..10)
+        .map(|i| {
+            let th = 0.9 * i as f64;
+            Point3::new(50.0 * th.cos(), 50.0 * th.sin(), 12.0 * th)
+        })
+        .collect();
+    let trefoil = (0..12)
+        .map(|i| {
+            let t = i as f64 / 12.0 * std::f64::consts::TAU;
+            Point3::new(
+                30.0 * (t.sin() + 2.0 * (2.0 * t).sin()),
+                30.0 * (t.cos() - 2.0 * (2.0 * t).cos()),
+                -30.0 * (3.0 * t).sin(),
+            )
+        })
+        .collect();
+    [
+        ("space-helix", helix, false),
+        ("space-trefoil", trefoil, true),
+    ]
 }
 
 /// The file-name tag of a variant: `kappa` or `ek-<a>`.

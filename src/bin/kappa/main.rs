@@ -11,6 +11,7 @@ mod failure;
 mod gallery;
 mod hermite;
 mod picture;
+mod space;
 
 use std::process::ExitCode;
 
@@ -32,6 +33,7 @@ use failure::EXIT_ERROR;
         kappa curve --builtin bear --scheme ek-cubic --shape 0.85 --png bear.png\n  \
         kappa diff expected.png actual.png --out diff.png\n  \
         kappa bench --repeat 11\n  \
+        echo '{\"points\": [[0,0,0],[100,0,30],[100,100,0],[0,100,30]]}' | kappa space\n  \
         kappa gallery --out gallery\n  \
         echo '{\"start\": {\"point\": [0,0], \"angle\": 0}, \"end\": {\"point\": [10,4], \"angle\": 1.2}, \"degree\": 3}' | kappa hermite"
 )]
@@ -46,6 +48,7 @@ enum Command {
     Diff(diff::DiffArgs),
     Bench(bench::BenchArgs),
     Gallery(gallery::GalleryArgs),
+    Space(space::SpaceArgs),
     Hermite(hermite::HermiteArgs),
 }
 
@@ -60,6 +63,7 @@ fn main() -> ExitCode {
         Command::Diff(args) => diff::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Gallery(args) => gallery::run(args),
+        Command::Space(args) => space::run(args),
         Command::Hermite(args) => hermite::run(args),
     });
     match result {
