@@ -8,6 +8,9 @@ use crate::solver::{Outcome, Problem, Settings, Workspace};
 use crate::trig::TrigBez;
 use crate::{Error, Point3};
 
+/// Iterations a warm re-solve may take before the cold cascade takes over.
+const WARM_BUDGET: usize = 100;
+
 /// The relative size below which two consecutive points count as repeated, and below which
 /// the spread of a closed curve's points off their best line counts as collinear.
 const COINCIDENT: f64 = 1e-12;
@@ -870,11 +873,21 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             max_iterations: self.options.max_iterations,
         };
         let outcome = if self.warm {
-            let warm = self.ws.solve_warm(&self.prob, &settings);
+            // A warm start that does not converge quickly is far from the new solution: a
+            // capped attempt, then the cold cascade with what is left of the budget.
+            let warm_settings = Settings {
+                max_iterations: settings.max_iterations.min(WARM_BUDGET),
+                ..settings
+            };
+            let warm = self.ws.solve_warm(&self.prob, &warm_settings);
             if warm.converged {
                 warm
             } else {
-                let mut cold = self.ws.solve_cold(&self.prob, &settings, &mut self.scratch);
+                let rest = Settings {
+                    max_iterations: settings.max_iterations.saturating_sub(warm.iterations),
+                    ..settings
+                };
+                let mut cold = self.ws.solve_cold(&self.prob, &rest, &mut self.scratch);
                 cold.iterations += warm.iterations;
                 cold
             }
