@@ -4,7 +4,8 @@
 //! Run with `cargo bench --all-features --bench solve`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use kappa::{builtin_design, Design, Scheme, Shape, Solver};
+use kappa::fit::{FitMethod, FitOptions};
+use kappa::{builtin_design, Design, Scheme, Shape, Solver, Spline};
 use kurbo::Point;
 use std::hint::black_box;
 
@@ -34,6 +35,7 @@ fn bear(c: &mut Criterion) {
     for (label, scheme, shape) in [
         ("kappa", Scheme::Kappa, Shape::Neutral),
         ("ek_cubic_0.85", Scheme::EkCubic, Shape::Global(0.85)),
+        ("ek_trig_0.75", Scheme::EkTrig, Shape::Global(0.75)),
     ] {
         g.bench_function(label, |b| {
             let mut solvers: Vec<Solver> = curves.iter().map(|_| Solver::new()).collect();
@@ -44,6 +46,51 @@ fn bear(c: &mut Criterion) {
             })
         });
     }
+    // εκ-trig solved and fitted to cubics (1e-4 of each curve's size), and the fit alone.
+    let solved: Vec<Spline> = curves
+        .iter()
+        .map(|(pts, closed)| Spline::ek_trig(pts, *closed, 0.75).unwrap())
+        .collect();
+    g.bench_function("ek_trig_0.75_solve_fit", |b| {
+        let mut solvers: Vec<Solver> = curves.iter().map(|_| Solver::new()).collect();
+        b.iter(|| {
+            for ((pts, closed), s) in curves.iter().zip(solvers.iter_mut()) {
+                let spline = s
+                    .solve(pts, *closed, Scheme::EkTrig, &Shape::Global(0.75))
+                    .unwrap();
+                black_box(spline.fit(&FitOptions::default()).unwrap());
+            }
+        })
+    });
+    g.bench_function("ek_trig_0.75_fit_only", |b| {
+        b.iter(|| {
+            for spline in &solved {
+                black_box(spline.fit(&FitOptions::default()).unwrap());
+            }
+        })
+    });
+    g.bench_function("ek_trig_0.75_fit_only_hermite", |b| {
+        let options = FitOptions {
+            method: FitMethod::Hermite,
+            ..FitOptions::default()
+        };
+        b.iter(|| {
+            for spline in &solved {
+                black_box(spline.fit(&options).unwrap());
+            }
+        })
+    });
+    g.bench_function("ek_trig_0.75_fit_only_unchecked", |b| {
+        let options = FitOptions {
+            check_samples: 0,
+            ..FitOptions::default()
+        };
+        b.iter(|| {
+            for spline in &solved {
+                black_box(spline.fit(&options).unwrap());
+            }
+        })
+    });
     g.finish();
 }
 
@@ -53,6 +100,7 @@ fn warm(c: &mut Criterion) {
     for (label, scheme, shape) in [
         ("kappa", Scheme::Kappa, Shape::Neutral),
         ("ek_cubic_0.85", Scheme::EkCubic, Shape::Global(0.85)),
+        ("ek_trig_0.75", Scheme::EkTrig, Shape::Global(0.75)),
     ] {
         let mut moved = pts.clone();
         moved[10] += kurbo::Vec2::new(0.8, -0.5);
@@ -101,5 +149,37 @@ fn scaling(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bear, warm, scaling);
+/// The path tool's drag update on a 100-point closed path: move one point, warm re-solve,
+/// and build the path and its comb for drawing.
+fn editor_drag(c: &mut Criterion) {
+    use kappa::editor::Editor;
+    let mut g = c.benchmark_group("editor_drag_100");
+    for (label, scheme) in [
+        ("kappa", Scheme::Kappa),
+        ("ek_cubic", Scheme::EkCubic),
+        ("ek_trig", Scheme::EkTrig),
+    ] {
+        let mut e = Editor::new(scheme);
+        for p in star(100) {
+            e.add_point(p);
+        }
+        e.set_closed(true);
+        let base = e.doc().points[30].point();
+        let mut k = 0usize;
+        g.bench_function(label, |b| {
+            b.iter(|| {
+                k += 1;
+                // Back and forth by up to half a unit, like a hand dragging.
+                let off = 0.5 * ((k % 8) as f64 / 4.0 - 1.0);
+                let change = e.move_point(30, base + kurbo::Vec2::new(off, -off));
+                black_box(change);
+                black_box(e.to_bezpath());
+                black_box(e.curvature_comb(10.0, 8));
+            })
+        });
+    }
+    g.finish();
+}
+
+criterion_group!(benches, bear, warm, scaling, editor_drag);
 criterion_main!(benches);

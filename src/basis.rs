@@ -94,6 +94,161 @@ impl SegmentBasis for CubicEk {
     }
 }
 
+/// The constrained quadratic trigonometric segment of εκ-curves (seed 000 eq. 17):
+/// `C(t) = u²Q0 + 2uv[(1-a)Q0 + aQ1] + 2uw[(1-a)(Q0+Q2) + 2aQ1] + 2vw[aQ1 + (1-a)Q2] + w²Q2`
+/// with `S = sin(πt/2)`, `C = cos(πt/2)`, `u = 1-S`, `v = S+C-1`, `w = 1-C` and
+/// `1/2 ≤ a < 1`; `a = 1/2` is the linear trigonometric curve of eq. 18.
+///
+/// Collecting the weights of `Q0` and `Q2` (with `v + w = S`, `u + v = C`) and writing
+/// `b = 1 - 2a`: `w0(t) = (1-S)(1 + bS)`, `w2(t) = (1-C)(1 + bC) = w0(1-t)`. This is the
+/// trigonometric cubic Bernstein-like basis of seed 000 eq. 29 with `α = 2a`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct TrigEk {
+    b: f64,
+    /// The shape parameter as given (kept so that it round-trips exactly).
+    a: f64,
+}
+
+impl TrigEk {
+    /// The segment with shape parameter `a`.
+    pub(crate) fn new(a: f64) -> TrigEk {
+        TrigEk {
+            b: 1.0 - 2.0 * a,
+            a,
+        }
+    }
+
+    /// `f(x) = (1-x)(1+bx)` composed with `x(t)`, and its `t`-derivatives of order 1 to 4,
+    /// given `x(t)` and its four derivatives.
+    #[inline]
+    fn compose(&self, x: [f64; 5]) -> [f64; 5] {
+        let b = self.b;
+        // f = 1 + (b-1)x - b x², f_x = (b-1) - 2bx, f_xx = -2b.
+        let fx = (b - 1.0) - 2.0 * b * x[0];
+        let fxx = -2.0 * b;
+        [
+            1.0 + x[0] * ((b - 1.0) - b * x[0]),
+            fx * x[1],
+            fxx * x[1] * x[1] + fx * x[2],
+            3.0 * fxx * x[1] * x[2] + fx * x[3],
+            fxx * (3.0 * x[2] * x[2] + 4.0 * x[1] * x[3]) + fx * x[4],
+        ]
+    }
+}
+
+impl SegmentBasis for TrigEk {
+    #[inline]
+    fn weights(&self, t: f64) -> [[f64; 2]; 5] {
+        let w = core::f64::consts::FRAC_PI_2;
+        let (s, c) = (w * t).sin_cos();
+        let (w2, w3, w4) = (w * w, w * w * w, w * w * w * w);
+        // Derivatives of S = sin(ωt) and C = cos(ωt).
+        let ds = [s, w * c, -w2 * s, -w3 * c, w4 * s];
+        let dc = [c, -w * s, -w2 * c, w3 * s, w4 * c];
+        let f = self.compose(ds);
+        let g = self.compose(dc);
+        core::array::from_fn(|k| [f[k], g[k]])
+    }
+
+    fn end_coefficient(&self) -> f64 {
+        // κ(1) = ((1-a)/a²) Δ / |Q2-Q1|³ (seed 000 eq. 26; the tests check it against the
+        // weights).
+        (1.0 - self.a) / (self.a * self.a)
+    }
+}
+
+/// The segment family of one block of the solver.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Basis {
+    /// Constrained cubic Bernstein (κ-curves are its `a = 2/3` member).
+    Cubic(CubicEk),
+    /// Constrained quadratic trigonometric.
+    Trig(TrigEk),
+}
+
+impl Basis {
+    /// The quadratic Bézier of κ-curves.
+    pub(crate) const QUADRATIC: Basis = Basis::Cubic(CubicEk::QUADRATIC);
+
+    /// The shape parameter `a`.
+    pub(crate) fn a(&self) -> f64 {
+        match self {
+            Basis::Cubic(b) => b.a(),
+            Basis::Trig(b) => b.a,
+        }
+    }
+
+    /// The member of the same family with shape parameter `a`.
+    pub(crate) fn with_a(&self, a: f64) -> Basis {
+        match self {
+            Basis::Cubic(_) => Basis::Cubic(CubicEk::new(a)),
+            Basis::Trig(_) => Basis::Trig(TrigEk::new(a)),
+        }
+    }
+}
+
+impl SegmentBasis for Basis {
+    #[inline]
+    fn weights(&self, t: f64) -> [[f64; 2]; 5] {
+        match self {
+            Basis::Cubic(b) => b.weights(t),
+            Basis::Trig(b) => b.weights(t),
+        }
+    }
+
+    #[inline]
+    fn end_coefficient(&self) -> f64 {
+        match self {
+            Basis::Cubic(b) => b.end_coefficient(),
+            Basis::Trig(b) => b.end_coefficient(),
+        }
+    }
+}
+
+/// What kind of curvature extremum a segment has at its peak parameter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Extremum {
+    /// |κ| is locally maximal there (the schemes' intent).
+    Max,
+    /// |κ| is locally minimal there: the stationary point the scheme placed at the input
+    /// point is a curvature minimum (εκ-trig with small `a` and gentle turns).
+    Min,
+}
+
+/// Peak parameters closer than this to 0 or 1 are classified as at the segment end.
+const END_SLACK: f64 = 1e-9;
+
+/// Classifies the stationary point of `|κ|` at `t` of the segment `Q1 - w0 r + w2 s`.
+///
+/// With `h = A B' - A' B` (module docs), `|κ| = |h| |r × s| / N^{3/2}` and
+/// `d|κ|/dt = sgn(h) |r × s| g / N^{5/2}`, `g = c_rr r·r + c_rs r·s + c_ss s·s`. Inside
+/// `(0, 1)` the point is a maximum when `sgn(h) g' ≤ 0`; at `t = 0` (`t = 1`) it is a
+/// maximum when `|κ|` does not increase into the segment (does not decrease towards the end).
+pub(crate) fn classify<B: SegmentBasis>(basis: &B, rr: f64, rs: f64, ss: f64, t: f64) -> Extremum {
+    let w = basis.weights(t);
+    let st = Stationarity::new(&w);
+    let h = (-w[1][0]) * w[2][1] - (-w[2][0]) * w[1][1];
+    let sign = if h < 0.0 { -1.0 } else { 1.0 };
+    let g = sign * (st.c[0] * rr + st.c[1] * rs + st.c[2] * ss);
+    let dg = sign * (st.dc[0] * rr + st.dc[1] * rs + st.dc[2] * ss);
+    // Slack for rounding in g, whose terms are of the size of |r|², |s|².
+    let slack =
+        1e-9 * (st.c[0].abs() * rr.abs() + st.c[1].abs() * rs.abs() + st.c[2].abs() * ss.abs());
+    // Peak parameters within rounding of an end count as that end.
+    let max = if t <= END_SLACK {
+        g <= slack
+    } else if t >= 1.0 - END_SLACK {
+        g >= -slack
+    } else {
+        dg <= 0.0
+    };
+    if max {
+        Extremum::Max
+    } else {
+        Extremum::Min
+    }
+}
+
 /// Coefficients of the stationarity condition `c_rr r·r + c_rs r·s + c_ss s·s` and of its
 /// `t`-derivative, from the basis weights (see the module docs).
 #[derive(Clone, Copy, Debug)]
@@ -153,9 +308,8 @@ mod tests {
         }
     }
 
-    #[test]
-    fn cubic_ek_derivatives_match_finite_differences() {
-        let basis = CubicEk::new(0.8);
+    /// The weights' derivatives of order 1 to 4 match central differences of the order below.
+    fn assert_weight_derivatives(basis: impl SegmentBasis, tol: f64) {
         let h = 1e-6;
         for i in 1..10 {
             let t = i as f64 / 10.0;
@@ -163,10 +317,20 @@ mod tests {
             for k in 0..4 {
                 for j in 0..2 {
                     let fd = (hi[k][j] - lo[k][j]) / (2.0 * h);
-                    assert_near(mid[k + 1][j], fd, 1e-7);
+                    assert_near(mid[k + 1][j], fd, tol);
                 }
             }
+            let (slo, shi) = (Stationarity::new(&lo), Stationarity::new(&hi));
+            let smid = Stationarity::new(&mid);
+            for k in 0..3 {
+                assert_near(smid.dc[k], (shi.c[k] - slo.c[k]) / (2.0 * h), 1e-5);
+            }
         }
+    }
+
+    #[test]
+    fn cubic_ek_derivatives_match_finite_differences() {
+        assert_weight_derivatives(CubicEk::new(0.8), 1e-7);
     }
 
     #[test]
@@ -191,6 +355,71 @@ mod tests {
             assert_near(f, expected, 1e-12);
             let df = st.dc[0] * rr + st.dc[1] * rs + st.dc[2] * ss;
             assert_near(df, -48.0 * (rr - 2.0 * rs + ss), 1e-12);
+        }
+    }
+
+    #[test]
+    fn trig_weights_match_the_blending_form() {
+        // Seed 000 eq. 17: w0 = u² + 2(1-a)(uv + uw), w2 = w² + 2(1-a)(uw + vw).
+        for &a in &[0.5, 0.6, 0.75, 0.9] {
+            let basis = TrigEk::new(a);
+            for i in 0..=20 {
+                let t = i as f64 / 20.0;
+                let (s, c) = (core::f64::consts::FRAC_PI_2 * t).sin_cos();
+                let (u, v, w) = (1.0 - s, s + c - 1.0, 1.0 - c);
+                let w0 = u * u + 2.0 * (1.0 - a) * (u * v + u * w);
+                let w2 = w * w + 2.0 * (1.0 - a) * (u * w + v * w);
+                let got = basis.weights(t);
+                assert_near(got[0][0], w0, 1e-15);
+                assert_near(got[0][1], w2, 1e-15);
+            }
+        }
+    }
+
+    #[test]
+    fn trig_derivatives_match_finite_differences() {
+        assert_weight_derivatives(TrigEk::new(0.7), 1e-6);
+    }
+
+    /// The generic end coefficient computed from the weights.
+    #[derive(Clone, Copy)]
+    struct FromWeights(TrigEk);
+
+    impl SegmentBasis for FromWeights {
+        fn weights(&self, t: f64) -> [[f64; 2]; 5] {
+            self.0.weights(t)
+        }
+    }
+
+    #[test]
+    fn trig_end_coefficient_matches_weights_and_paper() {
+        // Seed 000 eq. 26: κ(1) = ((1-a)/a²) Δ / |Q2 - Q1|³.
+        for &a in &[0.5, 0.55, 0.7, 0.9, 0.99] {
+            let basis = TrigEk::new(a);
+            assert_near(
+                FromWeights(basis).end_coefficient(),
+                basis.end_coefficient(),
+                1e-12,
+            );
+            assert_near(basis.end_coefficient(), (1.0 - a) / (a * a), 1e-15);
+        }
+    }
+
+    #[test]
+    fn classify_symmetric_segments() {
+        // A symmetric segment (|r| = |s|) is stationary at t = 1/2. The cubic is a maximum
+        // there for every a ≥ 2/3; the trigonometric segment is a minimum for a near 1/2 and
+        // gentle turns, and a maximum for large a (thresholds: tests/trig.rs).
+        for deg in [1.0f64, 30.0, 60.0, 89.0, 120.0] {
+            let th = deg.to_radians();
+            let (rr, rs, ss) = (1.0, th.cos(), 1.0);
+            for a in [2.0 / 3.0, 0.7, 0.9] {
+                assert_eq!(classify(&CubicEk::new(a), rr, rs, ss, 0.5), Extremum::Max);
+            }
+            assert_eq!(classify(&TrigEk::new(0.9), rr, rs, ss, 0.5), Extremum::Max);
+            if deg < 90.0 {
+                assert_eq!(classify(&TrigEk::new(0.5), rr, rs, ss, 0.5), Extremum::Min);
+            }
         }
     }
 

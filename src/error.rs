@@ -34,8 +34,10 @@ pub enum Error {
     /// The points are so far apart that their extent overflows (coordinates near ±1e308).
     #[error("the points span more than the largest finite number")]
     ExtentOverflow,
-    /// All points of a closed curve lie on one line, so no closed curve through them exists.
-    #[error("all points of the closed curve are collinear")]
+    /// All points lie on one line and the curve would have to turn back along it (every
+    /// closed curve on one line, and open ones whose points double back), so no curve
+    /// through them exists.
+    #[error("the points are collinear and the curve would have to turn back along the line")]
     Collinear,
     /// A shape parameter is outside its admissible range or not finite.
     #[error("shape parameter {index} is {value}, outside [{min}, {max})")]
@@ -57,9 +59,39 @@ pub enum Error {
         /// The number of shape parameters given.
         got: usize,
     },
+    /// The `γ` of a κ-space curve's joint lies outside the open interval where its quartic
+    /// exists (`(λ t1, λ + (1 − λ) t2)`, seed 004 eqs. 17, 18), or is not finite.
+    #[error("gamma of joint {joint} is {value}, outside ({min}, {max})")]
+    GammaOutOfRange {
+        /// Index of the joint.
+        joint: usize,
+        /// The value given.
+        value: f64,
+        /// The lower bound (excluded).
+        min: f64,
+        /// The upper bound (excluded).
+        max: f64,
+    },
     /// A solver option (tolerance, iteration cap, ...) is not usable.
     #[error("invalid option: {0}")]
     InvalidOption(&'static str),
+    /// A curve handed to the fitting adapter evaluates to a NaN or infinite point or
+    /// derivative.
+    #[error("segment {segment} of the curve to fit is not finite")]
+    NonFiniteCurve {
+        /// Index of the offending segment.
+        segment: usize,
+    },
+    /// An SVG document could not be read.
+    #[error("invalid SVG: {0}")]
+    InvalidSvg(String),
+    /// No curve with the requested curvature profile meets the Hermite end conditions (for
+    /// example G2 end curvatures outside the profile's viable region).
+    #[error("no curve with this curvature profile meets the end conditions: {reason}")]
+    NoHermiteSolution {
+        /// Why the solver gave up.
+        reason: &'static str,
+    },
     /// The solver stopped at its iteration cap before reaching the tolerance.
     #[error("did not converge in {iterations} iterations (relative residual {residual:e})")]
     NotConverged {

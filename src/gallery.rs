@@ -2,11 +2,10 @@
 //! input points and curvature comb; several schemes side by side (the εκ paper's Figs. 6, 8
 //! and 9 show κ-curves beside εκ-curves with `a = 0.75, 0.85, 0.95`).
 
-use kurbo::{BezPath, Point, Rect};
+use kurbo::{Point, Rect};
 
-use crate::analysis::{curvature_comb, path_max_curvature};
 use crate::render::{hstack, Pixmap, RenderError, Scene};
-use crate::{Design, Error, Scheme, Shape, Solver};
+use crate::{Design, Error, Scheme, Shape, Solver, Spline};
 
 /// The four variants of the paper's figures: κ, then εκ with `a = 0.75, 0.85, 0.95`.
 pub const PAPER_VARIANTS: [(Scheme, f64); 4] = [
@@ -14,6 +13,18 @@ pub const PAPER_VARIANTS: [(Scheme, f64); 4] = [
     (Scheme::EkCubic, 0.75),
     (Scheme::EkCubic, 0.85),
     (Scheme::EkCubic, 0.95),
+];
+
+/// The variants of the εκ paper's Fig. 11: κ, εκ-cubic with `a = 0.75, 0.9`, and εκ-trig
+/// with `a = 0.55, 0.6, 0.75, 0.9`.
+pub const TRIG_VARIANTS: [(Scheme, f64); 7] = [
+    (Scheme::Kappa, 2.0 / 3.0),
+    (Scheme::EkCubic, 0.75),
+    (Scheme::EkCubic, 0.9),
+    (Scheme::EkTrig, 0.55),
+    (Scheme::EkTrig, 0.6),
+    (Scheme::EkTrig, 0.75),
+    (Scheme::EkTrig, 0.9),
 ];
 
 /// Gap between the panels of [`paper_figure`], in pixels.
@@ -45,24 +56,24 @@ pub enum GalleryError {
     Render(#[from] RenderError),
 }
 
-/// The solved curves of a drawing as kurbo paths, with their input points.
+/// The solved curves of a drawing with their input points.
 pub fn solve_design(
     design: &Design,
     scheme: Scheme,
     a: f64,
-) -> Result<Vec<(BezPath, Vec<Point>)>, GalleryError> {
+) -> Result<Vec<(Spline, Vec<Point>)>, GalleryError> {
     let mut solver = Solver::new();
     let mut out = Vec::with_capacity(design.curves.len());
     for (curve, c) in design.curves.iter().enumerate() {
         let pts = c.kurbo_points();
         let shape = match scheme {
             Scheme::Kappa => Shape::Neutral,
-            Scheme::EkCubic => Shape::Global(a),
+            Scheme::EkCubic | Scheme::EkTrig => Shape::Global(a),
         };
         let spline = solver
             .solve(&pts, c.is_closed(), scheme, &shape)
             .map_err(|source| GalleryError::Curve { curve, source })?;
-        out.push((spline.to_bezpath(), pts));
+        out.push((spline, pts));
     }
     Ok(out)
 }
@@ -70,13 +81,13 @@ pub fn solve_design(
 /// Comb scales (tooth length per unit |κ|), one per curve: the largest |κ| of each curve gets
 /// a tooth of a fixed fraction (0.15) of that curve's size, so small contours (an eye) do not
 /// flatten the comb of large ones.
-pub fn comb_scales(curves: &[(BezPath, Vec<Point>)]) -> Vec<f64> {
+pub fn comb_scales(curves: &[(Spline, Vec<Point>)]) -> Vec<f64> {
     curves
         .iter()
-        .map(|(path, _)| {
-            let size = kurbo::Shape::bounding_box(path).size();
+        .map(|(spline, _)| {
+            let size = kurbo::Shape::bounding_box(&spline.to_bezpath()).size();
             let size = size.width.max(size.height).max(f64::MIN_POSITIVE);
-            let kmax = path_max_curvature(path).value.min(COMB_KAPPA_CAP / size);
+            let kmax = spline.max_abs_curvature().min(COMB_KAPPA_CAP / size);
             if kmax > 0.0 && kmax.is_finite() {
                 COMB_FRACTION * size / kmax
             } else {
@@ -101,13 +112,14 @@ pub fn design_scene(
     Ok(curves_scene(&curves, width, height, combs))
 }
 
-/// A `width × height` scene of solved curves (paths with their input points): curvature
-/// combs, curves and points, in a view of the input points with a margin (y down). `combs`
-/// are the tooth lengths per unit |κ|, one per curve (`None`: from these curves, see
-/// [`comb_scales`]). This is how [`design_scene`] draws, for curves solved elsewhere (with
-/// other options or per-point shapes).
+/// A `width × height` scene of solved curves with their input points: curvature combs of the
+/// exact curves, the curves (εκ-trig ones fitted within 1e-4 of their size) and the points,
+/// in a view of the input points with a margin (y down). `combs` are the tooth lengths per
+/// unit |κ|, one per curve (`None`: from these curves, see [`comb_scales`]). This is how
+/// [`design_scene`] draws, for curves solved elsewhere (with other options or per-point
+/// shapes).
 pub fn curves_scene(
-    curves: &[(BezPath, Vec<Point>)],
+    curves: &[(Spline, Vec<Point>)],
     width: u32,
     height: u32,
     combs: Option<&[f64]>,
@@ -124,11 +136,11 @@ pub fn curves_scene(
     if let Some(view) = view_box(curves.iter().flat_map(|(_, pts)| pts.iter().copied())) {
         scene = scene.with_view_box(view);
     }
-    for ((path, _), &scale) in curves.iter().zip(scales) {
-        scene = scene.comb(&curvature_comb(path, scale, COMB_SAMPLES));
+    for ((spline, _), &scale) in curves.iter().zip(scales) {
+        scene = scene.comb(&spline.curvature_comb(scale, COMB_SAMPLES));
     }
-    for (path, pts) in curves {
-        scene = scene.curve(path).input_points(pts);
+    for (spline, pts) in curves {
+        scene = scene.curve(&spline.to_bezpath()).input_points(pts);
     }
     scene
 }
@@ -147,10 +159,21 @@ fn view_box(points: impl Iterator<Item = Point>) -> Option<Rect> {
 /// with `a = 0.75, 0.85, 0.95` ([`PAPER_VARIANTS`]), each `panel × panel` pixels, with the
 /// comb scales of the κ panel in every panel so that their curvature can be compared.
 pub fn paper_scenes(design: &Design, panel: u32) -> Result<Vec<Scene>, GalleryError> {
+    variant_scenes(design, &PAPER_VARIANTS, panel)
+}
+
+/// The panels of a figure of `variants` (scheme and shape) as scenes, each `panel × panel`
+/// pixels, with the comb scales of the first variant in every panel so that their curvature
+/// can be compared. [`PAPER_VARIANTS`] and [`TRIG_VARIANTS`] are the paper's.
+pub fn variant_scenes(
+    design: &Design,
+    variants: &[(Scheme, f64)],
+    panel: u32,
+) -> Result<Vec<Scene>, GalleryError> {
     let mut scales = Vec::new();
-    let mut scenes = Vec::with_capacity(PAPER_VARIANTS.len());
-    for (scheme, a) in PAPER_VARIANTS {
-        // The first variant is the κ-curve, whose comb scales every panel uses.
+    let mut scenes = Vec::with_capacity(variants.len());
+    for &(scheme, a) in variants {
+        // The first variant's comb scales are used in every panel.
         let curves = solve_design(design, scheme, a)?;
         if scales.is_empty() {
             scales = comb_scales(&curves);
@@ -162,7 +185,17 @@ pub fn paper_scenes(design: &Design, panel: u32) -> Result<Vec<Scene>, GalleryEr
 
 /// The paper-style figure: the [`paper_scenes`] rendered side by side.
 pub fn paper_figure(design: &Design, panel: u32) -> Result<Pixmap, GalleryError> {
-    let scenes = paper_scenes(design, panel)?;
+    variant_figure(design, &PAPER_VARIANTS, panel)
+}
+
+/// The [`variant_scenes`] of `variants` rendered side by side (for [`TRIG_VARIANTS`], the
+/// paper's Fig. 11 layout in one row).
+pub fn variant_figure(
+    design: &Design,
+    variants: &[(Scheme, f64)],
+    panel: u32,
+) -> Result<Pixmap, GalleryError> {
+    let scenes = variant_scenes(design, variants, panel)?;
     let images = scenes
         .iter()
         .map(|s| s.render())

@@ -45,12 +45,23 @@
 //!
 //! # What is where
 //!
-//! - [`Spline`], [`Solver`]: κ-curves ([`Scheme::Kappa`]) and cubic εκ-curves
-//!   ([`Scheme::EkCubic`]), open and closed; [`Solver3`] for 3D points.
+//! - [`Spline`], [`Solver`]: κ-curves ([`Scheme::Kappa`]), cubic εκ-curves
+//!   ([`Scheme::EkCubic`]) and trigonometric εκ-curves ([`Scheme::EkTrig`]), open and closed;
+//!   [`Solver3`] for 3D points.
+//! - [`TrigBez`] ([`trig`]): curves of the generalized trigonometric basis of any degree.
 //! - [`BSpline`], [`BSpline3`]: uniform cubic B-splines through given points, open (relaxed)
 //!   and closed (periodic), with their exact maximum curvature.
 //! - [`analysis`]: curvature of Bézier segments of degree 1–4 in 2D and 3D, curvature
 //!   extrema, maxima of paths, continuity at joints, curvature combs.
+//! - [`space`]: κ-space curves, G2 in 3D ([`SpaceCurve`]): the 3D κ-curve with a quartic at
+//!   every joint, projections to 2D, JSON and OBJ export, pictures from several views.
+//! - [`editor`]: the engine of a curvature-pen path tool (edits, corners, undo/redo, hit
+//!   testing, warm re-solves).
+//! - [`fit`]: cubic Bézier paths for curves that are not polynomial, within a measured
+//!   tolerance.
+//! - [`intrinsic`]: curves whose curvature is an explicit (rational) Bézier function of arc
+//!   length — G1/G2 Hermite segments (degree 1: clothoids), inflection and monotonicity
+//!   checks, G2 splines through points, viable regions.
 //! - `render` (feature `render`): deterministic SVG/PNG pictures and golden-image comparison.
 //! - `gallery` (features `render` + `serde`): the paper-style figures.
 //! - [`BUILTIN_DESIGNS`]: the drawings of the εκ-curve paper, compiled in.
@@ -81,30 +92,36 @@ mod bspline;
 #[cfg(feature = "serde")]
 mod design;
 mod designs;
+pub mod editor;
 mod error;
+pub mod fit;
 #[cfg(all(feature = "render", feature = "serde"))]
 pub mod gallery;
+pub mod intrinsic;
 mod linalg;
 mod point3;
 #[cfg(feature = "render")]
 pub mod render;
 mod solver;
+pub mod space;
 mod spline;
+pub mod trig;
 
 /// The README's examples, compiled and run as doctests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
 
-pub use bspline::{
-    BSpline, BSpline3, BSplineCurvatureMax, BSplinePathElements, BSplinePoint, OrthographicView,
-};
+pub use basis::Extremum;
+pub use bspline::{BSpline, BSpline3, BSplineCurvatureMax, BSplinePathElements, BSplinePoint};
 #[cfg(feature = "serde")]
 pub use design::{Design, DesignCurve};
 pub use designs::{builtin_design, BUILTIN_DESIGNS};
 pub use error::Error;
 pub use point3::{Point3, Vec3};
+pub use space::{SpaceCurve, SpaceOptions};
 pub use spline::{
-    Coords, Scheme, Segment, Shape, SolveOptions, SolveReport, Solver, Solver3, SolverN, Spline,
-    Spline3,
+    svg_path_data, Coords, Scheme, Segment, Shape, SolveOptions, SolveReport, Solver, Solver3,
+    SolverN, Spline, Spline3, EK_TRIG_DEFAULT_SHAPE,
 };
+pub use trig::TrigBez;

@@ -26,7 +26,7 @@
 //! the fallback when a step fails. Open curves are the same system with fixed "ghost"
 //! control points `c_{-1} = p_first`, `c_n = p_last` and `λ_{-1} = 0`, `λ_{n-1} = 1`.
 
-use crate::basis::{CubicEk, SegmentBasis, Stationarity};
+use crate::basis::{Basis, SegmentBasis, Stationarity};
 use crate::linalg::{solve_tridiagonal, BandLu, BorderedLu, DenseLu, TriScratch};
 
 /// Regularization of the squared doubled triangle area, in normalized coordinates (drawing
@@ -49,11 +49,15 @@ const ATTEMPT_BUDGET: usize = 30;
 /// Shape parameters where the solver converges most reliably (measured on the drawings of
 /// the εκ paper), the starts of the continuation fallbacks, tried in this order.
 const A_HOMES: [f64; 3] = [0.85, 0.75, 0.95];
+/// The same for trigonometric segments, plus a start below the usual targets: their
+/// solution branches coming from large `a` can fold just above `a = 0.65` (a peak moving
+/// into a segment end), where the branch coming from small `a` (peak at the end) goes on.
+const A_HOMES_TRIG: [f64; 4] = [0.85, 0.75, 0.95, 0.6];
 /// Within this factor of the tolerance, full Newton steps are taken without the line search's
 /// decrease test (the merit is at rounding noise there for very large curves).
 const QUADRATIC_REGION: f64 = 1e3;
 /// Chord steps (warm re-solves) must shrink the merit by this factor or Newton takes over.
-const CHORD_CONTRACTION: f64 = 0.1;
+const CHORD_CONTRACTION: f64 = 1e-2;
 /// At most this many chord steps per warm re-solve.
 const MAX_CHORD: usize = 12;
 /// Newton budget of one continuation step.
@@ -140,7 +144,7 @@ pub(crate) struct Problem<const D: usize> {
     /// Open curves: the first and last input points.
     pub ghost: [[f64; D]; 2],
     /// The segment basis of each block.
-    pub basis: Vec<CubicEk>,
+    pub basis: Vec<Basis>,
 }
 
 /// The unknowns.
@@ -555,7 +559,11 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             }
             keep(self, out, &mut best);
         }
-        for home in A_HOMES {
+        let homes: &[f64] = match prob.basis.first() {
+            Some(Basis::Trig(_)) => &A_HOMES_TRIG,
+            _ => &A_HOMES,
+        };
+        for &home in homes {
             if total >= set.max_iterations {
                 break;
             }
@@ -600,7 +608,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             scratch.basis.extend(
                 prob.basis
                     .iter()
-                    .map(|b| CubicEk::new(b.a() + (1.0 - s) * (home - b.a()))),
+                    .map(|b| b.with_a(b.a() + (1.0 - s) * (home - b.a()))),
             );
         };
         blend(scratch, 0.0);
@@ -1221,14 +1229,14 @@ impl Var {
 /// `s̃ = (q2 - p) - w0 d`, `d = q2 - q0`; `f(0) ≥ 0 ≥ f(1)`, and the root is found by
 /// Newton's method safeguarded by bisection.
 pub(crate) fn peak_parameter<const D: usize>(
-    basis: CubicEk,
+    basis: Basis,
     q0: [f64; D],
     q2: [f64; D],
     p: [f64; D],
     guess: f64,
 ) -> f64 {
     let d = sub(q2, q0);
-    if basis == CubicEk::QUADRATIC {
+    if basis == Basis::QUADRATIC {
         // Seed 004 eq. 4: |d|² t³ + 3 d·(q0-p) t² + (3q0 - 2p - q2)·(q0-p) t - |q0-p|² = 0,
         // which has exactly one root in [0, 1].
         let e = sub(q0, p);
@@ -1310,8 +1318,8 @@ mod tests {
     fn peak_parameter_quadratic_is_vertex() {
         // For the quadratic the peak t is where the parabola's vertex lies.
         let (q0, q2, p) = ([0.0, 0.0], [4.0, 0.0], [1.0, 1.5]);
-        let t = peak_parameter(CubicEk::QUADRATIC, q0, q2, p, 0.5);
-        let w = CubicEk::QUADRATIC.weights(t);
+        let t = peak_parameter(Basis::QUADRATIC, q0, q2, p, 0.5);
+        let w = Basis::QUADRATIC.weights(t);
         let c1: [f64; 2] = core::array::from_fn(|k| {
             (p[k] - w[0][0] * q0[k] - w[0][1] * q2[k]) / (1.0 - w[0][0] - w[0][1])
         });
@@ -1411,7 +1419,7 @@ mod jacobian_tests {
             closed,
             p: p.clone(),
             ghost: [[0.5; D], [-0.5; D]],
-            basis: vec![CubicEk::new(a); n],
+            basis: vec![Basis::Cubic(crate::basis::CubicEk::new(a)); n],
         };
         let st = State {
             c: p.iter()
@@ -1509,7 +1517,7 @@ mod linear_tests {
             closed,
             p: p.clone(),
             ghost: [[1.5; D], [-1.5; D]],
-            basis: vec![CubicEk::new(0.7); n],
+            basis: vec![Basis::Cubic(crate::basis::CubicEk::new(0.7)); n],
         };
         let mut ws = Workspace::<D, B>::default();
         ws.cold_start(&prob);

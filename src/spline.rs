@@ -1,10 +1,15 @@
-//! κ-curves and cubic εκ-curves: the public front of the solver.
+//! κ-curves and εκ-curves (cubic and trigonometric): the public front of the solver.
 
 use kurbo::{BezPath, CubicBez, ParamCurve, PathSeg, Point, QuadBez};
 
-use crate::basis::CubicEk;
+use crate::basis::{classify, Basis, CubicEk, Extremum, TrigEk};
+use crate::fit::{FitOptions, Fitted};
 use crate::solver::{Outcome, Problem, Settings, Workspace};
+use crate::trig::TrigBez;
 use crate::{Error, Point3};
+
+/// Iterations a warm re-solve may take before the cold cascade takes over.
+const WARM_BUDGET: usize = 100;
 
 /// The relative size below which two consecutive points count as repeated, and below which
 /// the spread of a closed curve's points off their best line counts as collinear.
@@ -12,6 +17,11 @@ const COINCIDENT: f64 = 1e-12;
 
 /// The family of segments a curve is built from.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(rename_all = "kebab-case")
+)]
 pub enum Scheme {
     /// κ-curves (Yan et al. 2017): quadratic Bézier segments, curvature peaks at the points.
     #[default]
@@ -19,12 +29,30 @@ pub enum Scheme {
     /// εκ-curves with the constrained cubic Bernstein segment (seed 000 §3): a shape
     /// parameter `a ∈ [2/3, 1)` per point; larger `a` gives a sharper curvature peak.
     EkCubic,
+    /// εκ-curves with the constrained quadratic trigonometric segment (seed 000 §4): a
+    /// shape parameter `a ∈ [1/2, 1)` per point, rounder than [`Scheme::EkCubic`] at the
+    /// same `a`. Not polynomial: [`Spline::to_bezpath`] fits cubics to it.
+    ///
+    /// For `a` below about 0.61 and gentle turns the stationary point placed at an input
+    /// point is a curvature *minimum* (see [`Segment::extremum`]); the default shape
+    /// ([`Scheme::neutral_shape`]) is [`EK_TRIG_DEFAULT_SHAPE`], which keeps maxima.
+    EkTrig,
 }
 
+/// The default shape parameter of [`Scheme::EkTrig`]. A symmetric segment's stationary
+/// point is a curvature minimum below `a ≈ 0.6104` (for a gentle 1° turn; less for sharper
+/// turns), and asymmetric segments need more: on the built-in drawings, 9 of their points
+/// sit at minima with `a = 0.65` and none with `a = 0.7`.
+pub const EK_TRIG_DEFAULT_SHAPE: f64 = 0.7;
+
 impl Scheme {
-    /// The neutral shape parameter (`2/3` for both: the εκ cubic is then the κ quadratic).
+    /// The shape parameter of [`Shape::Neutral`]: `2/3` for κ and εκ-cubic (the εκ cubic is
+    /// then the κ quadratic), [`EK_TRIG_DEFAULT_SHAPE`] for εκ-trig.
     pub const fn neutral_shape(self) -> f64 {
-        2.0 / 3.0
+        match self {
+            Scheme::Kappa | Scheme::EkCubic => 2.0 / 3.0,
+            Scheme::EkTrig => EK_TRIG_DEFAULT_SHAPE,
+        }
     }
 
     /// The admissible shape range `[min, max)`.
@@ -32,14 +60,29 @@ impl Scheme {
         match self {
             Scheme::Kappa => (2.0 / 3.0, 2.0 / 3.0),
             Scheme::EkCubic => (2.0 / 3.0, 1.0),
+            Scheme::EkTrig => (0.5, 1.0),
         }
     }
 
-    /// The polynomial degree of the output segments.
+    /// The degree of the output segments: 2 for κ (quadratic Bézier) and εκ-trig
+    /// (quadratic trigonometric), 3 for εκ-cubic.
     pub const fn degree(self) -> usize {
         match self {
-            Scheme::Kappa => 2,
+            Scheme::Kappa | Scheme::EkTrig => 2,
             Scheme::EkCubic => 3,
+        }
+    }
+
+    /// Whether the segments are polynomial, so that [`Spline::to_bezpath`] is exact.
+    pub const fn is_polynomial(self) -> bool {
+        !matches!(self, Scheme::EkTrig)
+    }
+
+    /// The solver's segment family for shape `a`.
+    fn basis(self, a: f64) -> Basis {
+        match self {
+            Scheme::Kappa | Scheme::EkCubic => Basis::Cubic(CubicEk::new(a)),
+            Scheme::EkTrig => Basis::Trig(TrigEk::new(a)),
         }
     }
 }
@@ -47,7 +90,7 @@ impl Scheme {
 /// Shape parameters of εκ-curves.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub enum Shape {
-    /// The scheme's neutral value (`a = 2/3`).
+    /// The scheme's neutral value ([`Scheme::neutral_shape`]).
     #[default]
     Neutral,
     /// One value for every point.
@@ -109,23 +152,42 @@ impl From<Outcome> for SolveReport {
     }
 }
 
-/// A segment of a κ- or εκ-curve: a quadratic (κ) or constrained cubic (εκ) Bézier whose
-/// curvature peaks at its input point, at parameter `t_max`.
+/// A segment of a κ- or εκ-curve whose curvature peaks at its input point, at parameter
+/// `t_max`: a quadratic Bézier (κ), a constrained cubic Bézier (εκ-cubic, seed 000 eq. 1)
+/// or a constrained quadratic trigonometric curve (εκ-trig, seed 000 eq. 17).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Segment<P> {
-    /// The three defining points `Q0, Q1, Q2` (seed 000 eq. 1).
+    /// The three defining points `Q0, Q1, Q2` (seed 000 eqs. 1 and 17).
     pub q: [P; 3],
     /// The shape parameter `a` (`2/3` for κ-curves).
     pub a: f64,
     /// The parameter of the curvature peak (where the input point lies).
     pub t_max: f64,
-    /// The polynomial degree: 2 (κ) or 3 (εκ).
+    /// The degree: 2 (κ; εκ-trig, quadratic trigonometric) or 3 (εκ-cubic).
     pub degree: usize,
+    /// The scheme the segment belongs to.
+    pub scheme: Scheme,
+}
+
+impl<P> Segment<P> {
+    /// The solver's basis of this segment.
+    fn basis(&self) -> Basis {
+        if self.degree == 2 && self.scheme != Scheme::EkTrig {
+            Basis::QUADRATIC
+        } else {
+            self.scheme.basis(self.a)
+        }
+    }
 }
 
 impl Segment<Point> {
-    /// The Bézier control points (3 for degree 2, 4 for degree 3).
+    /// The control points: the Bézier control points (3 for κ, 4 for εκ-cubic), or for
+    /// εκ-trig the five control points `P0..P4` of the quadratic trigonometric curve
+    /// (seed 000 eq. 17; see [`TrigBez::constrained`]).
     pub fn control_points(&self) -> Vec<Point> {
+        if self.scheme == Scheme::EkTrig {
+            return self.to_trig().points().to_vec();
+        }
         match self.to_path_seg() {
             PathSeg::Quad(q) => vec![q.p0, q.p1, q.p2],
             PathSeg::Cubic(c) => vec![c.p0, c.p1, c.p2, c.p3],
@@ -133,20 +195,70 @@ impl Segment<Point> {
         }
     }
 
-    /// The exact kurbo segment: `QuadBez` for κ, `CubicBez` for εκ.
+    /// The kurbo segment: exact `QuadBez` for κ and `CubicBez` for εκ-cubic. An εκ-trig
+    /// segment has no exact polynomial form; it gives the cubic with the same end points
+    /// and end derivatives (a rough stand-in — use [`Spline::fit`] or
+    /// [`Spline::to_bezpath`] for a path within a stated tolerance).
     pub fn to_path_seg(&self) -> PathSeg {
         let [q0, q1, q2] = self.q;
-        if self.degree == 2 {
-            PathSeg::Quad(QuadBez::new(q0, q1, q2))
-        } else {
-            let a = self.a;
-            PathSeg::Cubic(CubicBez::new(q0, q0.lerp(q1, a), q2.lerp(q1, a), q2))
+        match (self.scheme, self.degree) {
+            (Scheme::EkTrig, _) => {
+                let trig = self.to_trig();
+                let (d0, d1) = (trig.derivative(0.0) / 3.0, trig.derivative(1.0) / 3.0);
+                PathSeg::Cubic(CubicBez::new(q0, q0 + d0, q2 - d1, q2))
+            }
+            (_, 2) => PathSeg::Quad(QuadBez::new(q0, q1, q2)),
+            _ => {
+                let a = self.a;
+                PathSeg::Cubic(CubicBez::new(q0, q0.lerp(q1, a), q2.lerp(q1, a), q2))
+            }
         }
+    }
+
+    /// An εκ-trig segment as a [`TrigBez`] (for the other schemes, the same defining points
+    /// read as a constrained trigonometric curve — only meaningful for εκ-trig).
+    pub fn to_trig(&self) -> TrigBez {
+        let [q0, q1, q2] = self.q;
+        TrigBez::constrained(q0, q1, q2, self.a)
     }
 
     /// The point at parameter `t`.
     pub fn eval(&self, t: f64) -> Point {
+        if self.scheme == Scheme::EkTrig {
+            return self.to_trig().eval(t);
+        }
         self.to_path_seg().eval(t)
+    }
+
+    /// The signed curvature at `t` (positive for left turns), exact for every scheme.
+    pub fn curvature(&self, t: f64) -> f64 {
+        if self.scheme == Scheme::EkTrig {
+            return self.to_trig().curvature(t);
+        }
+        crate::analysis::CurvatureAnalysis::curvature(&self.to_path_seg(), t)
+    }
+
+    /// The curvature vector at `t` (`κ` times the left unit normal: it points to the centre
+    /// of curvature), exact for every scheme; zero where the tangent is undefined.
+    pub fn curvature_vector(&self, t: f64) -> kurbo::Vec2 {
+        if self.scheme == Scheme::EkTrig {
+            let trig = self.to_trig();
+            let d = trig.derivative(t);
+            let len = d.hypot();
+            if len == 0.0 || !len.is_finite() {
+                return kurbo::Vec2::ZERO;
+            }
+            return trig.curvature(t) * kurbo::Vec2::new(-d.y, d.x) / len;
+        }
+        crate::analysis::CurvatureAnalysis::curvature_vector(&self.to_path_seg(), t)
+    }
+
+    /// Whether `|κ|` is maximal or minimal at `t_max` (see [`Extremum`]). κ and εκ-cubic
+    /// segments always peak there; εκ-trig segments with `a` below about 0.61 may not.
+    pub fn extremum(&self) -> Extremum {
+        let [q0, q1, q2] = self.q;
+        let (r, s) = (q1 - q0, q2 - q1);
+        classify(&self.basis(), r.dot(r), r.dot(s), s.dot(s), self.t_max)
     }
 }
 
@@ -235,8 +347,96 @@ impl Spline<Point> {
         Solver::new().solve(points, closed, Scheme::EkCubic, &shape.into())
     }
 
-    /// The curve as a kurbo path of exact `QuadBez` (κ) or `CubicBez` (εκ) segments.
+    /// An εκ-curve in the trigonometric basis through `points` with default options.
+    pub fn ek_trig(
+        points: &[Point],
+        closed: bool,
+        shape: impl Into<Shape>,
+    ) -> Result<Spline, Error> {
+        Solver::new().solve(points, closed, Scheme::EkTrig, &shape.into())
+    }
+
+    /// A curvature comb of the exact curve (every scheme, trigonometric segments included):
+    /// `samples_per_segment` teeth per segment, uniform in `t` with both ends, each from the
+    /// curve point `p` to `p − scale · κ · n` (see [`crate::analysis::curvature_comb`]).
+    pub fn curvature_comb(&self, scale: f64, samples_per_segment: usize) -> BezPath {
+        let m = samples_per_segment.max(2);
+        let mut samples = Vec::with_capacity(m * self.segments.len());
+        for seg in &self.segments {
+            // One curve object per segment; points and derivatives straight from it.
+            let trig = (seg.scheme == Scheme::EkTrig).then(|| seg.to_trig());
+            let poly = seg.to_path_seg();
+            for i in 0..m {
+                let t = i as f64 / (m - 1) as f64;
+                let (p, d1, d2) = match &trig {
+                    Some(c) => (c.eval(t), c.derivative(t), c.second_derivative(t)),
+                    None => path_seg_derivs(&poly, t),
+                };
+                let len2 = d1.hypot2();
+                let k = if len2 > 0.0 && len2.is_finite() {
+                    // κ n with n the left unit normal: (d1 × d2)/|d1|⁴ · (-d1.y, d1.x).
+                    d1.cross(d2) / (len2 * len2) * kurbo::Vec2::new(-d1.y, d1.x)
+                } else {
+                    kurbo::Vec2::ZERO
+                };
+                samples.push((p, k));
+            }
+        }
+        crate::analysis::comb_from_samples(samples, scale)
+    }
+
+    /// The largest |κ| of the curve: at the peak parameters, the segment ends, and 64
+    /// samples per segment (exact for the peaks the scheme places at the input points).
+    pub fn max_abs_curvature(&self) -> f64 {
+        self.segments
+            .iter()
+            .flat_map(|seg| {
+                (0..=64)
+                    .map(|i| i as f64 / 64.0)
+                    .chain([seg.t_max])
+                    .map(move |t| seg.curvature(t).abs())
+            })
+            .filter(|k| k.is_finite())
+            .fold(0.0, f64::max)
+    }
+
+    /// The curve as a kurbo path within `options`' tolerance, with the number of cubics per
+    /// segment and the measured distance to the exact curve (see [`crate::fit`]). εκ-trig
+    /// segments are fitted; the polynomial schemes give their exact path
+    /// ([`Spline::to_bezpath`], one segment each, distance 0).
+    pub fn fit(&self, options: &FitOptions) -> Result<Fitted, Error> {
+        if self.scheme != Scheme::EkTrig {
+            let path = self.to_bezpath();
+            let tolerance = match options.tolerance {
+                crate::fit::FitTolerance::Absolute(v) => v,
+                crate::fit::FitTolerance::Relative(v) => {
+                    let bbox = kurbo::Shape::bounding_box(&path);
+                    v * bbox.width().max(bbox.height())
+                }
+            };
+            return Ok(Fitted {
+                path,
+                cubics: vec![1; self.segments.len()],
+                tolerance,
+                max_distance: 0.0,
+            });
+        }
+        let trig: Vec<TrigBez> = self.segments.iter().map(|s| s.to_trig()).collect();
+        crate::fit::fit(&trig, self.closed, options)
+    }
+
+    /// The curve as a kurbo path: exact `QuadBez` (κ) or `CubicBez` (εκ-cubic) segments;
+    /// for εκ-trig, cubics fitted within `1e-4` of the drawing size
+    /// ([`FitOptions::default`]; use [`Spline::fit`] to choose).
     pub fn to_bezpath(&self) -> BezPath {
+        if self.scheme == Scheme::EkTrig {
+            // Fitting a solved curve cannot fail (its points are finite); an empty path
+            // would only stand for that impossible case.
+            return self
+                .fit(&FitOptions::default())
+                .map(|f| f.path)
+                .unwrap_or_default();
+        }
         let mut path = BezPath::new();
         for (i, seg) in self.segments.iter().enumerate() {
             let ps = seg.to_path_seg();
@@ -258,32 +458,57 @@ impl Spline<Point> {
     /// SVG path data of [`Spline::to_bezpath`]: the shortest decimal that reads back to the
     /// same `f64`, in exponent form where that is shorter (`1e300`, not 301 digits).
     pub fn to_svg(&self) -> String {
-        use kurbo::PathEl;
-        use std::fmt::Write as _;
-        let mut out = String::new();
-        let mut put = |cmd: char, pts: &[Point]| {
-            if !out.is_empty() {
+        svg_path_data(&self.to_bezpath())
+    }
+}
+
+/// Point, first and second derivative of a kurbo segment at `t`.
+fn path_seg_derivs(seg: &PathSeg, t: f64) -> (Point, kurbo::Vec2, kurbo::Vec2) {
+    use kurbo::ParamCurveDeriv;
+    match seg {
+        PathSeg::Line(l) => (l.eval(t), l.p1 - l.p0, kurbo::Vec2::ZERO),
+        PathSeg::Quad(q) => (
+            q.eval(t),
+            q.deriv().eval(t).to_vec2(),
+            q.deriv().deriv().eval(t).to_vec2(),
+        ),
+        PathSeg::Cubic(c) => (
+            c.eval(t),
+            c.deriv().eval(t).to_vec2(),
+            c.deriv().deriv().eval(t).to_vec2(),
+        ),
+    }
+}
+
+/// SVG path data of any kurbo path: absolute commands, and for every number the shortest
+/// decimal that reads back to the same `f64`, in exponent form where that is shorter
+/// (`1e300`, not 301 digits; `6.9e-18`, not 22 digits).
+pub fn svg_path_data(path: &BezPath) -> String {
+    use kurbo::PathEl;
+    use std::fmt::Write as _;
+    let mut out = String::new();
+    let mut put = |cmd: char, pts: &[Point]| {
+        if !out.is_empty() {
+            out.push(' ');
+        }
+        out.push(cmd);
+        for (i, p) in pts.iter().enumerate() {
+            if i > 0 {
                 out.push(' ');
             }
-            out.push(cmd);
-            for (i, p) in pts.iter().enumerate() {
-                if i > 0 {
-                    out.push(' ');
-                }
-                let _ = write!(out, "{},{}", svg_number(p.x), svg_number(p.y));
-            }
-        };
-        for el in self.to_bezpath().elements() {
-            match *el {
-                PathEl::MoveTo(p) => put('M', &[p]),
-                PathEl::LineTo(p) => put('L', &[p]),
-                PathEl::QuadTo(p1, p2) => put('Q', &[p1, p2]),
-                PathEl::CurveTo(p1, p2, p3) => put('C', &[p1, p2, p3]),
-                PathEl::ClosePath => put('Z', &[]),
-            }
+            let _ = write!(out, "{},{}", svg_number(p.x), svg_number(p.y));
         }
-        out
+    };
+    for el in path.elements() {
+        match *el {
+            PathEl::MoveTo(p) => put('M', &[p]),
+            PathEl::LineTo(p) => put('L', &[p]),
+            PathEl::QuadTo(p1, p2) => put('Q', &[p1, p2]),
+            PathEl::CurveTo(p1, p2, p3) => put('C', &[p1, p2, p3]),
+            PathEl::ClosePath => put('Z', &[]),
+        }
     }
+    out
 }
 
 /// A number for SVG: Rust's shortest round-trip decimal, or its exponent form when shorter.
@@ -594,7 +819,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         let range = block_range(self.prob.closed, shapes.len());
         self.prob
             .basis
-            .extend(shapes[range].iter().map(|&a| CubicEk::new(a)));
+            .extend(shapes[range].iter().map(|&a| scheme.basis(a)));
     }
 
     fn run(&mut self) -> Result<Spline<P>, Error> {
@@ -613,17 +838,28 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                 closed,
                 segments: vec![Segment {
                     q: [P::from_coords(p0), P::from_coords(mid), P::from_coords(p1)],
-                    a: 2.0 / 3.0,
+                    a: self.scheme.neutral_shape(),
                     t_max: 0.5,
                     degree: self.scheme.degree(),
+                    scheme: self.scheme,
                 }],
                 report,
             });
         }
-        if !closed
-            && collinear(&self.prob.p)
-            && collinear(&[self.prob.ghost[0], self.prob.p[0], self.prob.ghost[1]])
-        {
+        if !closed && {
+            // All input points on one line (the ends may coincide, as in a loop that starts
+            // where it ends, so they are checked together with the interior points).
+            let mut all = Vec::with_capacity(self.prob.p.len() + 2);
+            all.push(self.prob.ghost[0]);
+            all.extend_from_slice(&self.prob.p);
+            all.push(self.prob.ghost[1]);
+            if collinear(&all) && !monotone_along_line(&all) {
+                // A curve through points that double back along one line would need a
+                // cusp at every reversal: there is no κ- or εκ-curve through them.
+                return Err(Error::Collinear);
+            }
+            collinear(&all)
+        } {
             self.straight_solution();
             self.warm = true;
             let report = SolveReport {
@@ -637,11 +873,21 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             max_iterations: self.options.max_iterations,
         };
         let outcome = if self.warm {
-            let warm = self.ws.solve_warm(&self.prob, &settings);
+            // A warm start that does not converge quickly is far from the new solution: a
+            // capped attempt, then the cold cascade with what is left of the budget.
+            let warm_settings = Settings {
+                max_iterations: settings.max_iterations.min(WARM_BUDGET),
+                ..settings
+            };
+            let warm = self.ws.solve_warm(&self.prob, &warm_settings);
             if warm.converged {
                 warm
             } else {
-                let mut cold = self.ws.solve_cold(&self.prob, &settings, &mut self.scratch);
+                let rest = Settings {
+                    max_iterations: settings.max_iterations.saturating_sub(warm.iterations),
+                    ..settings
+                };
+                let mut cold = self.ws.solve_cold(&self.prob, &rest, &mut self.scratch);
                 cold.iterations += warm.iterations;
                 cold
             }
@@ -709,6 +955,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                 a: prob.basis[j].a(),
                 t_max: st.t[j],
                 degree: self.scheme.degree(),
+                scheme: self.scheme,
             });
         }
         // Open curves end exactly at the first and last input points.
@@ -733,6 +980,14 @@ fn block_range(closed: bool, m: usize) -> core::ops::Range<usize> {
     } else {
         1..m - 1
     }
+}
+
+/// Whether points on one line come in strictly monotone order along it.
+fn monotone_along_line<const D: usize>(p: &[[f64; D]]) -> bool {
+    let last = p[p.len() - 1];
+    let dir: [f64; D] = core::array::from_fn(|k| last[k] - p[0][k]);
+    let along = |q: &[f64; D]| (0..D).map(|k| (q[k] - p[0][k]) * dir[k]).sum::<f64>();
+    p.windows(2).all(|w| along(&w[1]) > along(&w[0]))
 }
 
 /// Whether all points lie on one line (relative to the drawing size 1).
@@ -781,7 +1036,7 @@ fn expand_shapes(scheme: Scheme, shape: &Shape, m: usize) -> Result<Vec<f64>, Er
                 "the kappa scheme has no shape parameter (use ek-cubic)",
             ));
         }
-        if scheme == Scheme::EkCubic && !(value >= min && value < max) {
+        if scheme != Scheme::Kappa && !(value >= min && value < max) {
             return Err(Error::ShapeOutOfRange {
                 index,
                 value,

@@ -1282,7 +1282,8 @@ mod golden {
     use super::*;
     use kappa::render::golden::{check_golden, Tolerance};
     use kappa::render::Scene;
-    use kappa::OrthographicView;
+    use kappa::space::View;
+    use kappa::Vec3;
     use std::path::Path;
 
     /// Side of the golden images in pixels.
@@ -1315,17 +1316,20 @@ mod golden {
     #[test]
     fn golden_bspline_e3_trefoil() {
         // Seen from 55° above the knot's plane, with the trefoil it samples in thin blue.
-        let view = OrthographicView::new((-60f64).to_radians(), 55f64.to_radians());
+        let (a, e) = ((-60f64).to_radians(), 55f64.to_radians());
+        let toward = Vec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin());
+        let view = View::looking(-toward, Vec3::new(0.0, 0.0, 1.0)).unwrap();
         let knot = BSpline3::new(&e3(), true).unwrap();
         let mut trefoil = kurbo::BezPath::new();
         for i in 0..=400 {
             let t = i as f64 / 400.0 * std::f64::consts::TAU;
             let r = 1.0 + 0.3 * (3.0 * t).cos();
-            let p = view.project(Point3::new(
+            let q = Point3::new(
                 r * (2.0 * t).cos(),
                 r * (2.0 * t).sin(),
                 0.35 * (3.0 * t).sin(),
-            ));
+            );
+            let p = Point::new(q.to_vec3().dot(view.right()), q.to_vec3().dot(view.up()));
             if i == 0 {
                 trefoil.move_to(p);
             } else {
@@ -1460,8 +1464,8 @@ mod cli {
             png.to_str().unwrap(),
             "--size",
             "200",
-            "--elevation",
-            "55",
+            "--view",
+            "top",
         ];
         json(&args, &input(&raw, true));
         assert!(std::fs::read_to_string(&svg).unwrap().starts_with("<svg"));

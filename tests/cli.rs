@@ -112,23 +112,48 @@ fn drawing_size(points: &[Point]) -> f64 {
     r.width().max(r.height())
 }
 
+/// A point of a trigonometric curve by repeated blending `u P_j + v P_{j+1} + w P_{j+2}`.
+fn trig_blend(points: &[Point], t: f64) -> Point {
+    let (s, c) = (std::f64::consts::FRAC_PI_2 * t).sin_cos();
+    let (u, v, w) = (1.0 - s, s + c - 1.0, 1.0 - c);
+    let mut p = points.to_vec();
+    while p.len() > 1 {
+        p = p
+            .windows(3)
+            .map(|q| (u * q[0].to_vec2() + v * q[1].to_vec2() + w * q[2].to_vec2()).to_point())
+            .collect();
+    }
+    p[0]
+}
+
 /// Checks one curve object of the contract against its input points.
 fn check_curve(curve: &Value, input: &[Point], closed: bool, scheme: &str, degree: u64) {
     let obj = curve.as_object().unwrap();
     let keys: Vec<&str> = obj.keys().map(String::as_str).collect();
     let mut sorted = keys.clone();
     sorted.sort_unstable();
-    assert_eq!(
-        sorted,
-        [
-            "closed",
-            "converged",
-            "iterations",
-            "scheme",
-            "segments",
-            "svg_path"
-        ]
-    );
+    let trig = scheme == "ek-trig";
+    let mut expected_keys = vec![
+        "closed",
+        "converged",
+        "iterations",
+        "scheme",
+        "segments",
+        "svg_path",
+    ];
+    if trig {
+        expected_keys.insert(2, "fit");
+    }
+    assert_eq!(sorted, expected_keys);
+    if trig {
+        let fit = &curve["fit"];
+        let tol = fit["tolerance"].as_f64().unwrap();
+        assert!(fit["max_distance"].as_f64().unwrap() <= tol);
+        assert_eq!(
+            fit["cubics"].as_array().unwrap().len(),
+            curve["segments"].as_array().unwrap().len()
+        );
+    }
     assert_eq!(curve["scheme"], scheme);
     assert_eq!(curve["closed"], closed);
     assert_eq!(curve["converged"], true);
@@ -154,13 +179,24 @@ fn check_curve(curve: &Value, input: &[Point], closed: bool, scheme: &str, degre
             .map(String::as_str)
             .collect();
         seg_keys.sort_unstable();
-        assert_eq!(seg_keys, ["degree", "points", "t_max"]);
+        if trig {
+            assert_eq!(seg_keys, ["basis", "degree", "extremum", "points", "t_max"]);
+            assert_eq!(seg["basis"], "trig");
+        } else {
+            assert_eq!(seg_keys, ["degree", "extremum", "points", "t_max"]);
+        }
+        assert!(seg["extremum"] == "max" || seg["extremum"] == "min");
         assert_eq!(seg["degree"].as_u64(), Some(degree));
         let ctrl = points_of(&seg["points"]);
-        assert_eq!(ctrl.len() as u64, degree + 1);
         let t = seg["t_max"].as_f64().unwrap();
         assert!((0.0..=1.0).contains(&t));
-        let at = de_casteljau(&ctrl, t);
+        let at = if trig {
+            assert_eq!(ctrl.len() as u64, 2 * degree + 1);
+            trig_blend(&ctrl, t)
+        } else {
+            assert_eq!(ctrl.len() as u64, degree + 1);
+            de_casteljau(&ctrl, t)
+        };
         assert!(
             (at - p).hypot() <= INTERPOLATION_TOLERANCE * size,
             "segment at t_max is {at:?}, input point {p:?}"
@@ -265,6 +301,34 @@ fn cli_curve_ek_cubic_shapes() {
         &CLOSED_INPUT.replace('}', r#", "scheme": "ek-cubic"}"#),
     );
     check_curve(&neutral, &closed_points(), true, "ek-cubic", 3);
+}
+
+#[test]
+fn cli_curve_ek_trig() {
+    for shape in ["0.55", "0.75", "[0.6, 0.7, 0.8, 0.9, 0.99]"] {
+        let closed = kappa_json(
+            &["curve"],
+            &CLOSED_INPUT.replace(
+                '}',
+                &format!(r#", "scheme": "ek-trig", "shape": {shape}}}"#),
+            ),
+        );
+        check_curve(&closed, &closed_points(), true, "ek-trig", 2);
+        let open = kappa_json(
+            &["curve"],
+            &open_input(&format!(r#", "scheme": "ek-trig", "shape": {shape}"#)),
+        );
+        check_curve(&open, &open_points(), false, "ek-trig", 2);
+    }
+    // The default shape keeps every peak a maximum here.
+    let default = kappa_json(
+        &["curve"],
+        &CLOSED_INPUT.replace('}', r#", "scheme": "ek-trig"}"#),
+    );
+    check_curve(&default, &closed_points(), true, "ek-trig", 2);
+    for seg in default["segments"].as_array().unwrap() {
+        assert_eq!(seg["extremum"], "max");
+    }
 }
 
 #[test]
@@ -555,7 +619,14 @@ fn cli_gallery() {
             expected.push(format!("{name}-{variant}.svg"));
         }
     }
+    for name in ["eps-ClosedEkcurveKTM1", "rose"] {
+        expected.push(format!("{name}-trig.png"));
+    }
     expected.push("drawings.png".to_owned());
+    expected.push("space-helix.png".to_owned());
+    expected.push("space-trefoil.png".to_owned());
+    expected.push("intrinsic-variety.png".to_owned());
+    expected.push("intrinsic-viable.png".to_owned());
     expected.push("bsplines.png".to_owned());
     assert_eq!(printed.len(), expected.len(), "{printed:?}");
     for file in &expected {
@@ -571,6 +642,8 @@ fn cli_gallery() {
     }
     let figure = kappa::render::golden::load_png(&dir.join("sub/bear.png")).unwrap();
     assert_eq!(figure.height(), 360);
+    let trig = kappa::render::golden::load_png(&dir.join("sub/rose-trig.png")).unwrap();
+    assert_eq!((trig.width(), trig.height()), (7 * 300 + 6 * 8, 300));
     let drawings = kappa::render::golden::load_png(&dir.join("sub/drawings.png")).unwrap();
     assert!(drawings.width() >= 3 * 300 && drawings.height() >= 3 * 300);
 }

@@ -496,17 +496,7 @@ fn star(n: usize) -> impl Strategy<Value = Vec<Point>> {
         .prop_map(|(raw, scale, shift)| {
             // Offsets proportional to the size: a tiny drawing far from the origin cannot
             // hold 1e-9 relative accuracy in its coordinates at all.
-            let shift = shift * scale;
-            let mut v = raw;
-            v.sort_by(|a, b| a.0.total_cmp(&b.0));
-            let n = v.len();
-            v.iter()
-                .enumerate()
-                .map(|(i, &(jitter, r))| {
-                    let th = (i as f64 + 0.6 * jitter) / n as f64 * std::f64::consts::TAU;
-                    Point::new(shift + scale * r * th.cos(), -shift + scale * r * th.sin())
-                })
-                .collect()
+            common::star_polygon(&raw, scale, shift * scale)
         })
 }
 
@@ -542,43 +532,22 @@ proptest! {
     }
 }
 
-/// A deterministic pseudo-random generator for the convergence-rate test.
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 #[test]
 fn random_inputs_convergence_rate() {
     // 2000 random star polygons per scheme (3–24 points, radii in [0.35, 1]), closed, and
     // open (the same polygon without its last point). Every converged curve must have all
     // the properties; every other one must say so; and the rate must stay high.
-    let mut rng = Lcg(2026);
+    let mut rng = common::Lcg(2026);
     let mut table = String::new();
     for (scheme, a) in SCHEMES {
         for closed in [true, false] {
             let (mut ok, mut total) = (0usize, 0usize);
             for _ in 0..2000 {
                 let n = 3 + (rng.next() * 22.0) as usize;
-                let mut raw: Vec<(f64, f64)> = (0..n)
+                let raw: Vec<(f64, f64)> = (0..n)
                     .map(|_| (rng.next(), 0.35 + 0.65 * rng.next()))
                     .collect();
-                raw.sort_by(|x, y| x.0.total_cmp(&y.0));
-                let mut pts: Vec<Point> = raw
-                    .iter()
-                    .enumerate()
-                    .map(|(i, &(j, r))| {
-                        let th = (i as f64 + 0.6 * j) / n as f64 * std::f64::consts::TAU;
-                        Point::new(100.0 * r * th.cos(), 100.0 * r * th.sin())
-                    })
-                    .collect();
+                let mut pts = common::star_polygon(&raw, 100.0, 0.0);
                 if !closed {
                     pts.pop();
                 }
@@ -753,4 +722,56 @@ fn svg_path_data_reads_back_exactly_and_stays_short() {
         let back = kurbo::BezPath::from_svg(&d).unwrap();
         assert_eq!(back, s.to_bezpath());
     }
+}
+
+#[test]
+fn open_loop_through_two_points_is_not_straight() {
+    // An open curve that starts and ends at the same point with two points between: not
+    // collinear, so it must be a real curve through all of them.
+    let pts = [
+        Point::new(153.0, 109.0),
+        Point::new(128.0, 121.0),
+        Point::new(126.0, 118.0),
+        Point::new(153.0, 109.0),
+    ];
+    for (scheme, a) in SCHEMES {
+        let s = Solver::new()
+            .solve(&pts, false, scheme, &shape_of(scheme, a))
+            .unwrap();
+        check_spline(&s, &pts, false, 30.0, "open loop");
+    }
+}
+
+#[test]
+fn open_points_doubling_back_along_a_line_are_collinear() {
+    // p0 → p1 → p2 → p0 on one line: no curve passes through them without cusps.
+    let pts = [
+        Point::new(151.4, 88.2),
+        Point::new(197.7, 47.7),
+        Point::new(71.13, 158.4),
+        Point::new(151.4, 88.2),
+    ];
+    let pts: Vec<Point> = pts
+        .iter()
+        .map(|p| {
+            // Exactly on the line through the first two points.
+            let d = Point::new(197.7, 47.7) - Point::new(151.4, 88.2);
+            let s = (*p - Point::new(151.4, 88.2)).dot(d) / d.hypot2();
+            Point::new(151.4, 88.2) + d * s
+        })
+        .collect();
+    for (scheme, a) in SCHEMES {
+        assert_eq!(
+            Solver::new()
+                .solve(&pts, false, scheme, &shape_of(scheme, a))
+                .unwrap_err(),
+            Error::Collinear
+        );
+    }
+    // In order along the line they still give the straight curve.
+    let mut sorted = pts[..3].to_vec();
+    sorted.sort_by(|a, b| a.x.total_cmp(&b.x));
+    assert!(Solver::new()
+        .solve(&sorted, false, Scheme::Kappa, &Shape::Neutral)
+        .is_ok());
 }

@@ -53,15 +53,42 @@ pub fn curvature_comb(path: &BezPath, scale: f64, samples_per_segment: usize) ->
                 }
             }
         }
-        for (j, &(base, tip)) in teeth.iter().enumerate() {
-            out.move_to(base);
-            out.line_to(tip);
-            if let Some(&(_, next)) = teeth.get(j + 1) {
-                out.line_to(next);
-            }
-        }
+        push_teeth(&mut out, &teeth);
     }
     out
+}
+
+/// A curvature comb from samples `(p, k)` of one curve in order, `k` the curvature vector
+/// (`κ` times the left unit normal, see [`CurvatureAnalysis::curvature_vector`](super::CurvatureAnalysis::curvature_vector)):
+/// teeth from `p` to `p − scale · k`, drawn like [`curvature_comb`]. For curves that are not
+/// Bézier paths (trigonometric segments) or when the samples come from elsewhere. Non-finite
+/// samples are skipped; a non-finite `scale` gives an empty path.
+pub fn comb_from_samples(
+    samples: impl IntoIterator<Item = (Point, kurbo::Vec2)>,
+    scale: f64,
+) -> BezPath {
+    let mut out = BezPath::new();
+    if !scale.is_finite() {
+        return out;
+    }
+    let teeth: Vec<(Point, Point)> = samples
+        .into_iter()
+        .map(|(p, k)| (p, p - scale * k))
+        .filter(|(p, tip)| p.is_finite() && tip.is_finite())
+        .collect();
+    push_teeth(&mut out, &teeth);
+    out
+}
+
+/// Appends teeth `base → tip` and the outline through consecutive tips.
+fn push_teeth(out: &mut BezPath, teeth: &[(Point, Point)]) {
+    for (j, &(base, tip)) in teeth.iter().enumerate() {
+        out.move_to(base);
+        out.line_to(tip);
+        if let Some(&(_, next)) = teeth.get(j + 1) {
+            out.line_to(next);
+        }
+    }
 }
 
 #[cfg(test)]

@@ -67,7 +67,7 @@ use kurbo::{BezPath, CubicBez, Line, PathEl, PathSeg, Point, QuadBez, Vec2};
 use crate::Vec3;
 use bez::{Bez, Sealed};
 
-pub use comb::curvature_comb;
+pub use comb::{comb_from_samples, curvature_comb};
 pub use continuity::{continuity, path_continuity, segments_continuity, Continuity, PathJoint};
 pub use quartic::QuarticBez;
 pub use space::SpaceBez;

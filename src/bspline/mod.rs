@@ -285,51 +285,6 @@ impl Lin for Point3 {
     }
 }
 
-/// An orthographic view of 3D space: the camera looks at the origin from the direction with
-/// the given azimuth (angle from the x axis in the xy plane, anticlockwise seen from +z) and
-/// elevation (angle above the xy plane), both in radians; the z axis points up on screen.
-///
-/// ```
-/// use kappa::{OrthographicView, Point3};
-///
-/// // From straight above (azimuth −90°, elevation 90°) the view is the xy plane itself.
-/// let top = OrthographicView::new(-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2);
-/// let p = top.project(Point3::new(1.0, 2.0, 3.0));
-/// assert!((p.x - 1.0).abs() < 1e-15 && (p.y - 2.0).abs() < 1e-15);
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct OrthographicView {
-    /// Angle of the viewing direction in the xy plane, from the x axis, in radians.
-    pub azimuth: f64,
-    /// Angle of the viewing direction above the xy plane, in radians.
-    pub elevation: f64,
-}
-
-impl Default for OrthographicView {
-    /// Azimuth −60°, elevation 30°: x to the lower right, y to the upper right, z up.
-    fn default() -> Self {
-        OrthographicView::new(-60f64.to_radians(), 30f64.to_radians())
-    }
-}
-
-impl OrthographicView {
-    /// A view from `azimuth` and `elevation` (radians).
-    pub const fn new(azimuth: f64, elevation: f64) -> OrthographicView {
-        OrthographicView { azimuth, elevation }
-    }
-
-    /// The point on screen (y up): the coordinates along the screen's right
-    /// `(−sin a, cos a, 0)` and up `(−sin e cos a, −sin e sin a, cos e)` directions.
-    pub fn project(&self, p: Point3) -> Point {
-        let (sa, ca) = self.azimuth.sin_cos();
-        let (se, ce) = self.elevation.sin_cos();
-        Point::new(
-            -sa * p.x + ca * p.y,
-            -se * ca * p.x - se * sa * p.y + ce * p.z,
-        )
-    }
-}
-
 /// Relative margin on [`CurvatureBounds::upper`] for rounding: a segment is skipped only if
 /// its bound, enlarged by this, is below the maximum found.
 const BOUND_MARGIN: f64 = 1e-9;

@@ -2,9 +2,10 @@
 
 use kurbo::{BezPath, Point};
 
-use super::{BSpline, OrthographicView};
+use super::BSpline;
 use crate::analysis::curvature_comb;
 use crate::render::{Color, PointStyle, Scene, Style};
+use crate::space::{Projection, View};
 use crate::Point3;
 
 /// The longest comb tooth (at the maximum |κ|) is this fraction of the drawing size.
@@ -44,11 +45,13 @@ impl BSpline<Point> {
 }
 
 impl BSpline<Point3> {
-    /// A `width × height` picture of the spline seen through `view` (y up): the dashed control
-    /// polygon, the curve, the interpolated points (red) and every point of maximum curvature
-    /// (purple, outlined). The projection is exact (orthographic views are affine).
-    pub fn scene(&self, view: OrthographicView, width: u32, height: u32) -> Scene {
-        let project = |p: Point3| view.project(p);
+    /// A `width × height` picture of the spline in the orthographic projection along `view`
+    /// (y up): the dashed control polygon, the curve, the interpolated points (red) and every
+    /// point of maximum curvature (purple, outlined). The projected curve is exact (an
+    /// orthographic projection is affine).
+    pub fn scene(&self, view: View, width: u32, height: u32) -> Scene {
+        let projection = Projection::Orthographic(view);
+        let project = |p: Point3| projection.point(p).unwrap_or(Point::ZERO);
         let path: BezPath = self.to_bezpath_projected(project);
         let max = self.max_curvature();
         let control: Vec<Point> = self.control_points().iter().map(|&p| project(p)).collect();

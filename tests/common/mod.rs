@@ -88,3 +88,48 @@ pub fn dist(a: Point, b: Point) -> f64 {
 pub fn start(seg: &PathSeg) -> Point {
     seg.eval(0.0)
 }
+
+/// A deterministic pseudo-random generator (64-bit LCG) for rate tests.
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    /// The next number in [0, 1).
+    pub fn next(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// A star-shaped polygon from `(jitter, radius)` pairs: the pairs sorted by jitter, point `i`
+/// at angle `(i + 0.6 jitter) / n` of a turn and that radius times `scale`, shifted by
+/// `(shift, -shift)`.
+pub fn star_polygon(raw: &[(f64, f64)], scale: f64, shift: f64) -> Vec<Point> {
+    let mut v = raw.to_vec();
+    v.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let n = v.len();
+    v.iter()
+        .enumerate()
+        .map(|(i, &(jitter, r))| {
+            let th = (i as f64 + 0.6 * jitter) / n as f64 * std::f64::consts::TAU;
+            Point::new(shift + scale * r * th.cos(), -shift + scale * r * th.sin())
+        })
+        .collect()
+}
+
+/// The maximizer of `f` on `[lo, hi]` by golden-section search (100 steps).
+pub fn golden_max(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> f64 {
+    let (mut a, mut b) = (lo, hi);
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..100 {
+        let (x1, x2) = (b - g * (b - a), a + g * (b - a));
+        if f(x1) > f(x2) {
+            b = x2;
+        } else {
+            a = x1;
+        }
+    }
+    0.5 * (a + b)
+}

@@ -12,7 +12,8 @@ use std::process::ExitCode;
 
 use clap::Args;
 use kappa::render::Scene;
-use kappa::{BSpline, BSpline3, BSplineCurvatureMax, BSplinePoint, OrthographicView, Point3};
+use kappa::space::{View, VIEWS};
+use kappa::{BSpline, BSpline3, BSplineCurvatureMax, BSplinePoint, Point3};
 use kurbo::Point;
 use serde::{Deserialize, Serialize};
 
@@ -42,7 +43,7 @@ const LENGTH_ACCURACY: f64 = 1e-10;
         (ties within 1e-12 relative), and 'points' the curve points there. 'value' is null if \
         the curvature is unbounded (a cusp). 'length' is the arc length.\n\n\
         --svg/--png draw the curve, its control polygon, the points and the maxima (in y-up \
-        coordinates; 2D curves with a curvature comb, 3D curves in an orthographic view).\n\n\
+        coordinates; 2D curves with a curvature comb, 3D curves in the orthographic --view).\n\n\
         On any error the exit code is 2, stderr holds one 'kappa: error:' line and stdout \
         stays empty.",
     after_help = "Examples:\n  \
@@ -64,17 +65,10 @@ pub struct BSplineArgs {
     #[arg(long, value_name = "W", default_value_t = 600,
           value_parser = clap::value_parser!(u32).range(1..=8192))]
     size: u32,
-    /// 3D pictures: azimuth of the viewing direction in degrees (from the x axis).
-    #[arg(long, value_name = "DEG", default_value_t = -60.0, allow_negative_numbers = true)]
-    azimuth: f64,
-    /// 3D pictures: elevation of the viewing direction in degrees (above the xy plane).
-    #[arg(
-        long,
-        value_name = "DEG",
-        default_value_t = 30.0,
-        allow_negative_numbers = true
-    )]
-    elevation: f64,
+    /// 3D pictures: the orthographic view (as for `kappa space`).
+    #[arg(long, value_name = "VIEW", default_value = "isometric",
+          value_parser = clap::builder::PossibleValuesParser::new(VIEWS.map(|v| v.0)))]
+    view: String,
 }
 
 /// The input.
@@ -117,9 +111,6 @@ enum Points {
 
 /// Runs `kappa bspline`.
 pub fn run(args: &BSplineArgs) -> Result<ExitCode> {
-    if !(args.azimuth.is_finite() && args.elevation.is_finite()) {
-        return Err(Failure::new("--azimuth and --elevation must be finite"));
-    }
     let text = match &args.input {
         Some(path) => failure::read_text(path)?,
         None => failure::read_stdin()?,
@@ -137,8 +128,10 @@ pub fn run(args: &BSplineArgs) -> Result<ExitCode> {
         Points::Space(pts) => {
             let s = BSpline3::new(&pts, closed).map_err(Failure::new)?;
             let json = to_json(&output(&s, |p| [p.x, p.y, p.z])?)?;
-            let view =
-                OrthographicView::new(args.azimuth.to_radians(), args.elevation.to_radians());
+            let view = VIEWS
+                .iter()
+                .find(|v| v.0 == args.view)
+                .map_or(View::ISOMETRIC, |v| v.1);
             (
                 json,
                 wants_picture(args).then(|| s.scene(view, args.size, args.size)),

@@ -13,7 +13,8 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{ArgGroup, Args, ValueEnum};
-use kappa::{Design, Scheme, Shape, SolveOptions, Solver, Spline};
+use kappa::fit::FitOptions;
+use kappa::{Design, Extremum, Scheme, Shape, SolveOptions, Solver, Spline};
 use kurbo::Point;
 use serde::{Deserialize, Serialize};
 
@@ -26,17 +27,21 @@ use crate::picture;
 #[command(
     long_about = "Solve a curve, or every curve of a drawing, and print its Bézier segments as JSON.\n\n\
         Input (stdin, or --input FILE), one JSON object:\n  \
-        {\"points\": [[x, y], ...], \"closed\": true, \"scheme\": \"kappa\" | \"ek-cubic\", \
+        {\"points\": [[x, y], ...], \"closed\": true, \"scheme\": \"kappa\" | \"ek-cubic\" | \"ek-trig\", \
         \"shape\": 0.8 | [a0, a1, ...]}\n\
-        'closed' defaults to true, 'scheme' to \"kappa\", 'shape' (ek-cubic only, in [2/3, 1)) \
-        to the neutral 2/3; other fields are rejected.\n\n\
+        'closed' defaults to true, 'scheme' to \"kappa\", 'shape' (ek-cubic: in [2/3, 1), default \
+        2/3; ek-trig: in [1/2, 1), default 0.65); other fields are rejected.\n\n\
         Output (stdout), one JSON object on one line:\n  \
         {\"scheme\": ..., \"closed\": ..., \"iterations\": n, \"converged\": true, \
-        \"segments\": [{\"degree\": 2 | 3, \"points\": [[x, y], ...], \"t_max\": t}, ...], \
-        \"svg_path\": \"M...\"}\n\
+        \"segments\": [{\"degree\": 2 | 3, \"points\": [[x, y], ...], \"t_max\": t, \
+        \"extremum\": \"max\" | \"min\"}, ...], \"svg_path\": \"M...\"}\n\
         Segment 'points' are the Bézier control points (3 for degree 2, 4 for degree 3); the \
-        segment passes through its input point at t_max. Segments follow the curve: one per \
-        input point (closed) or per interior input point (open).\n\n\
+        segment passes through its input point at t_max, where |curvature| has a local \
+        'extremum'. Segments follow the curve: one per input point (closed) or per interior \
+        input point (open). ek-trig segments carry \"basis\": \"trig\" and as 'points' the five \
+        control points P0..P4 of their quadratic trigonometric curve; their svg_path is fitted \
+        (cubics within 1e-4 of the drawing size) and the output adds \
+        \"fit\": {\"tolerance\": e, \"max_distance\": d, \"cubics\": [k, ...]}.\n\n\
         With --design FILE or --builtin NAME the input is a drawing \
         ({\"name\": ..., \"curves\": [{\"closed\": ..., \"points\": [...], \"shape\": [...]}]}) \
         and the output is {\"name\": ..., \"curves\": [<one object as above per curve>]}.\n\n\
@@ -64,8 +69,9 @@ pub struct CurveArgs {
     /// Scheme for a drawing [default: kappa].
     #[arg(long, value_enum, value_name = "SCHEME", requires = "drawing")]
     scheme: Option<SchemeName>,
-    /// Global shape parameter `a` in [2/3, 1) for a drawing (ek-cubic only). Without it,
-    /// ek-cubic uses each curve's own "shape" list if it has one, else 2/3.
+    /// Global shape parameter `a` for a drawing (ek-cubic: in [2/3, 1); ek-trig: in
+    /// [1/2, 1)). Without it, the εκ schemes use each curve's own "shape" list if it has
+    /// one, else their default (2/3, 0.65).
     #[arg(
         long,
         value_name = "A",
@@ -103,6 +109,8 @@ pub enum SchemeName {
     Kappa,
     /// Cubic εκ-curves: a shape parameter a ∈ [2/3, 1) per point.
     EkCubic,
+    /// Trigonometric εκ-curves: a shape parameter a ∈ [1/2, 1) per point.
+    EkTrig,
 }
 
 impl SchemeName {
@@ -111,6 +119,7 @@ impl SchemeName {
         match self {
             SchemeName::Kappa => Scheme::Kappa,
             SchemeName::EkCubic => Scheme::EkCubic,
+            SchemeName::EkTrig => Scheme::EkTrig,
         }
     }
 
@@ -119,6 +128,7 @@ impl SchemeName {
         match scheme {
             Scheme::Kappa => SchemeName::Kappa,
             Scheme::EkCubic => SchemeName::EkCubic,
+            Scheme::EkTrig => SchemeName::EkTrig,
         }
     }
 }
@@ -147,14 +157,27 @@ pub struct CurveOutput {
     converged: bool,
     segments: Vec<SegmentOutput>,
     svg_path: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    fit: Option<FitOutput>,
+}
+
+/// How the path of a non-polynomial curve was fitted.
+#[derive(Debug, Serialize)]
+struct FitOutput {
+    tolerance: f64,
+    max_distance: f64,
+    cubics: Vec<usize>,
 }
 
 /// One Bézier segment in the output.
 #[derive(Debug, Serialize)]
 struct SegmentOutput {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    basis: Option<&'static str>,
     degree: usize,
     points: Vec<[f64; 2]>,
     t_max: f64,
+    extremum: &'static str,
 }
 
 /// The output of a drawing.
@@ -284,9 +307,7 @@ fn parse_shape(value: &serde_json::Value) -> Result<Shape> {
             .enumerate()
             .map(|(index, v)| {
                 v.as_f64().ok_or_else(|| {
-                    Failure::new(format!(
-                        "shape parameter {index} is {v}, expected a number in [2/3, 1)"
-                    ))
+                    Failure::new(format!("shape parameter {index} is {v}, expected a number"))
                 })
             })
             .collect::<Result<Vec<f64>>>()
@@ -308,7 +329,9 @@ fn design_jobs(design: &Design, scheme: Scheme, a: Option<f64>) -> Result<Vec<Jo
         .map(|c| {
             let shape = match (a, scheme, &c.shape) {
                 (Some(a), _, _) => Shape::Global(a),
-                (None, Scheme::EkCubic, Some(list)) => Shape::PerPoint(list.clone()),
+                (None, Scheme::EkCubic | Scheme::EkTrig, Some(list)) => {
+                    Shape::PerPoint(list.clone())
+                }
                 _ => Shape::Neutral,
             };
             Job {
@@ -334,9 +357,14 @@ pub fn curve_output(spline: &Spline) -> Result<CurveOutput> {
         .segments()
         .iter()
         .map(|s| SegmentOutput {
+            basis: (s.scheme == Scheme::EkTrig).then_some("trig"),
             degree: s.degree,
             points: s.control_points().iter().map(|p| [p.x, p.y]).collect(),
             t_max: s.t_max,
+            extremum: match s.extremum() {
+                Extremum::Max => "max",
+                Extremum::Min => "min",
+            },
         })
         .collect();
     let finite = segments
@@ -347,6 +375,16 @@ pub fn curve_output(spline: &Spline) -> Result<CurveOutput> {
             "the solver produced a non-finite curve (try other points or options)",
         ));
     }
+    let fit = if spline.scheme().is_polynomial() {
+        None
+    } else {
+        let fitted = spline.fit(&FitOptions::default()).map_err(Failure::new)?;
+        Some(FitOutput {
+            tolerance: fitted.tolerance,
+            max_distance: fitted.max_distance,
+            cubics: fitted.cubics,
+        })
+    };
     Ok(CurveOutput {
         scheme: SchemeName::of(spline.scheme()),
         closed: spline.is_closed(),
@@ -354,6 +392,7 @@ pub fn curve_output(spline: &Spline) -> Result<CurveOutput> {
         converged: spline.converged(),
         segments,
         svg_path: spline.to_svg(),
+        fit,
     })
 }
 

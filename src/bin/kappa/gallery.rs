@@ -4,9 +4,12 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
 use clap::Args;
-use kappa::gallery::{design_scene, paper_scenes, FIGURE_GAP, PAPER_VARIANTS};
+use kappa::gallery::{
+    design_scene, paper_scenes, variant_figure, FIGURE_GAP, PAPER_VARIANTS, TRIG_VARIANTS,
+};
 use kappa::render::{hstack, Pixmap};
-use kappa::{BSpline, BSpline3, OrthographicView, Point3, Scheme};
+use kappa::space::{views_figure, View};
+use kappa::{BSpline, BSpline3, Point3, Scheme, SpaceCurve, SpaceOptions, Vec3};
 use kurbo::Point;
 
 use crate::builtin::{self, PAPER_DRAWINGS};
@@ -14,10 +17,20 @@ use crate::failure::{self, Failure, Result};
 
 /// The drawings shown with all four variants.
 const FIGURE_DRAWINGS: [&str; 3] = ["bear", "elephant", "bird"];
+/// The drawings shown in the layout of the paper's Fig. 11 (κ, εκ-cubic, εκ-trig).
+const TRIG_DRAWINGS: [&str; 2] = ["eps-ClosedEkcurveKTM1", "rose"];
+/// Side of each panel of the Fig. 11 layout, in pixels.
+const TRIG_PANEL: u32 = 300;
 /// Side of each panel of the paper figures, in pixels.
 const FIGURE_PANEL: u32 = 360;
 /// Side of each panel of the overview of all drawings, in pixels.
 const OVERVIEW_PANEL: u32 = 300;
+/// Side of each panel of the κ-space curve figures (four views side by side), in pixels.
+const SPACE_PANEL: u32 = 300;
+/// Side of each panel of the intrinsic-curve figures, in pixels.
+const INTRINSIC_PANEL: u32 = 260;
+/// Samples per axis of the viable-region figure.
+const VIABLE_SAMPLES: usize = 61;
 /// Panels per row of the overview.
 const OVERVIEW_COLUMNS: usize = 3;
 
@@ -28,7 +41,13 @@ const OVERVIEW_COLUMNS: usize = 3;
         <name>.png          bear, elephant and bird as a κ-curve and as εκ-curves with \
         a = 0.75, 0.85, 0.95 side by side\n  \
         <name>-<variant>.svg  one SVG per panel (variants kappa, ek-0.75, ek-0.85, ek-0.95)\n  \
+        <name>-trig.png     eps-ClosedEkcurveKTM1 and rose as in the paper's Fig. 11: κ, \
+        εκ-cubic with a = 0.75, 0.9 and εκ-trig with a = 0.55, 0.6, 0.75, 0.9\n  \
         drawings.png        all nine drawings of the εκ paper as κ-curves, in a 3 × 3 grid\n  \
+        intrinsic-variety.png  one G1 problem met by six curvature profiles (intrinsic curves)\n  \
+        intrinsic-viable.png   end curvatures admitting a monotone G2 segment, degrees 3, 5, 10\n  \
+        space-helix.png, space-trefoil.png  κ-space curves from the top, front, side and \
+        isometrically\n  \
         bsplines.png        uniform cubic B-splines of the B-spline paper (T4, and the trefoil \
         E3 in an orthographic view) with their maximum curvature marked\n\
         Prints the files written, one per line.",
@@ -68,6 +87,12 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
             hstack(&images, FIGURE_GAP).map_err(|e| Failure::new(format!("{name}: {e}")))?;
         write_png(&dir.join(format!("{name}.png")), &figure)?;
     }
+    for name in TRIG_DRAWINGS {
+        let design = builtin::load(name)?;
+        let figure = variant_figure(&design, &TRIG_VARIANTS, TRIG_PANEL)
+            .map_err(|e| Failure::new(format!("{name}: {e}")))?;
+        write_png(&dir.join(format!("{name}-trig.png")), &figure)?;
+    }
     let mut rows = Vec::new();
     for names in PAPER_DRAWINGS.chunks(OVERVIEW_COLUMNS) {
         let mut panels = Vec::with_capacity(names.len());
@@ -91,6 +116,19 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
         rows.push(hstack(&panels, FIGURE_GAP).map_err(Failure::new)?);
     }
     write_png(&dir.join("drawings.png"), &vstack(&rows, FIGURE_GAP)?)?;
+    for (name, points, closed) in space_inputs() {
+        let curve = SpaceCurve::new(&points, closed, &SpaceOptions::default())
+            .map_err(|e| Failure::new(format!("{name}: {e}")))?;
+        let figure =
+            views_figure(&curve, SPACE_PANEL).map_err(|e| Failure::new(format!("{name}: {e}")))?;
+        write_png(&dir.join(format!("{name}.png")), &figure)?;
+    }
+    let variety =
+        kappa::intrinsic::picture::variety_figure(INTRINSIC_PANEL).map_err(Failure::new)?;
+    write_png(&dir.join("intrinsic-variety.png"), &variety)?;
+    let viable = kappa::intrinsic::picture::viable_figure(INTRINSIC_PANEL, VIABLE_SAMPLES)
+        .map_err(Failure::new)?;
+    write_png(&dir.join("intrinsic-viable.png"), &viable)?;
     write_png(&dir.join("bsplines.png"), &bsplines()?)?;
     Ok(ExitCode::SUCCESS)
 }
@@ -111,7 +149,8 @@ const BSPLINE_T4: [(f64, f64); 9] = [
 /// The parameters at which the paper's E3 samples its trefoil knot.
 const BSPLINE_E3_T: [f64; 11] = [0.0, 0.4, 1.0, 1.5, 2.0, 2.5, 3.2, 3.9, 4.5, 5.1, 5.8];
 
-/// T4 and the trefoil E3 as periodic B-splines, side by side, maxima marked.
+/// T4 and the trefoil E3 as periodic B-splines, side by side, maxima marked; E3 seen from
+/// azimuth −60°, elevation 55° (as its golden image).
 fn bsplines() -> Result<Pixmap> {
     let t4: Vec<Point> = BSPLINE_T4.iter().map(|&p| p.into()).collect();
     let e3: Vec<Point3> = BSPLINE_E3_T
@@ -125,7 +164,9 @@ fn bsplines() -> Result<Pixmap> {
             )
         })
         .collect();
-    let view = OrthographicView::new((-60f64).to_radians(), 55f64.to_radians());
+    let (a, e) = ((-60f64).to_radians(), 55f64.to_radians());
+    let toward = Vec3::new(e.cos() * a.cos(), e.cos() * a.sin(), e.sin());
+    let view = View::looking(-toward, Vec3::new(0.0, 0.0, 1.0)).map_err(Failure::new)?;
     let scenes = [
         BSpline::periodic(&t4)
             .map_err(Failure::new)?
@@ -141,11 +182,37 @@ fn bsplines() -> Result<Pixmap> {
     hstack(&images, FIGURE_GAP).map_err(Failure::new)
 }
 
+/// The κ-space curves of the gallery: points on a helix (open) and on a trefoil knot
+/// (closed), the inputs of the golden images `tests/golden/space-*.png`.
+fn space_inputs() -> [(&'static str, Vec<Point3>, bool); 2] {
+    let helix = (0..10)
+        .map(|i| {
+            let th = 0.9 * i as f64;
+            Point3::new(50.0 * th.cos(), 50.0 * th.sin(), 12.0 * th)
+        })
+        .collect();
+    let trefoil = (0..12)
+        .map(|i| {
+            let t = i as f64 / 12.0 * std::f64::consts::TAU;
+            Point3::new(
+                30.0 * (t.sin() + 2.0 * (2.0 * t).sin()),
+                30.0 * (t.cos() - 2.0 * (2.0 * t).cos()),
+                -30.0 * (3.0 * t).sin(),
+            )
+        })
+        .collect();
+    [
+        ("space-helix", helix, false),
+        ("space-trefoil", trefoil, true),
+    ]
+}
+
 /// The file-name tag of a variant: `kappa` or `ek-<a>`.
 fn variant_name(scheme: Scheme, a: f64) -> String {
     match scheme {
         Scheme::Kappa => "kappa".to_owned(),
         Scheme::EkCubic => format!("ek-{a}"),
+        Scheme::EkTrig => format!("ek-trig-{a}"),
     }
 }
 

@@ -10,7 +10,9 @@ mod curve;
 mod diff;
 mod failure;
 mod gallery;
+mod hermite;
 mod picture;
+mod space;
 
 use std::process::ExitCode;
 
@@ -33,7 +35,9 @@ use failure::EXIT_ERROR;
         kappa curve --builtin bear --scheme ek-cubic --shape 0.85 --png bear.png\n  \
         kappa diff expected.png actual.png --out diff.png\n  \
         kappa bench --repeat 11\n  \
-        kappa gallery --out gallery"
+        echo '{\"points\": [[0,0,0],[100,0,30],[100,100,0],[0,100,30]]}' | kappa space\n  \
+        kappa gallery --out gallery\n  \
+        echo '{\"start\": {\"point\": [0,0], \"angle\": 0}, \"end\": {\"point\": [10,4], \"angle\": 1.2}, \"degree\": 3}' | kappa hermite"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -47,6 +51,8 @@ enum Command {
     Diff(diff::DiffArgs),
     Bench(bench::BenchArgs),
     Gallery(gallery::GalleryArgs),
+    Space(space::SpaceArgs),
+    Hermite(hermite::HermiteArgs),
 }
 
 fn main() -> ExitCode {
@@ -61,6 +67,8 @@ fn main() -> ExitCode {
         Command::Diff(args) => diff::run(args),
         Command::Bench(args) => bench::run(args),
         Command::Gallery(args) => gallery::run(args),
+        Command::Space(args) => space::run(args),
+        Command::Hermite(args) => hermite::run(args),
     });
     match result {
         Ok(Ok(code)) => code,

@@ -5,13 +5,9 @@
 use kappa::gallery::curves_scene;
 use kappa::render::Scene;
 use kappa::Spline;
-use kurbo::{BezPath, Point};
+use kurbo::Point;
 
 /// A `width × height` scene of solved curves with their input points and combs.
 pub fn scene(curves: &[(Spline, Vec<Point>)], width: u32, height: u32) -> Scene {
-    let paths: Vec<(BezPath, Vec<Point>)> = curves
-        .iter()
-        .map(|(s, pts)| (s.to_bezpath(), pts.clone()))
-        .collect();
-    curves_scene(&paths, width, height, None)
+    curves_scene(curves, width, height, None)
 }

@@ -1,0 +1,704 @@
+//! An editing engine for a curvature-pen path tool, independent of any UI.
+//!
+//! A [`PathDoc`] is what the user edits: points with a per-point εκ shape and a corner
+//! flag, open or closed, and a scheme. An [`Editor`] holds a document and its solved curve
+//! and applies edits — add, insert on the curve, move, delete, set shape, toggle corner,
+//! open/close, change scheme — each followed by a re-solve that starts from the previous
+//! solution, and undo/redo.
+//!
+//! **Corners** split the path into pieces: each piece runs from one corner (or path end) to
+//! the next and is solved as its own open curve, so the path has a tangent break at every
+//! corner. A closed path without corners is one closed curve. A piece of two points is a
+//! straight segment. While a closed path has fewer than three points it is drawn open.
+//!
+//! A piece that cannot be solved (a point dragged onto its neighbour, a solve that does not
+//! converge) keeps its last curve and reports the error in the [`Change`]; the document
+//! still takes the edit, so the user can drag on.
+
+#[cfg(feature = "render")]
+mod svg;
+
+#[cfg(feature = "render")]
+pub use svg::import_svg;
+
+use kurbo::{BezPath, Point};
+
+use crate::fit::{FitMethod, FitOptions};
+use crate::{Error, Scheme, Segment, Shape, Solver, Spline};
+
+/// One point of a path being edited.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct EditPoint {
+    /// x coordinate.
+    pub x: f64,
+    /// y coordinate.
+    pub y: f64,
+    /// The εκ shape parameter of this point (ignored by the κ scheme and at piece ends).
+    pub shape: f64,
+    /// A corner: the path has a tangent break here.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub corner: bool,
+}
+
+impl EditPoint {
+    /// The position.
+    pub fn point(&self) -> Point {
+        Point::new(self.x, self.y)
+    }
+}
+
+/// The document of a path tool: serialisable (feature `serde`), and all an [`Editor`] needs
+/// to rebuild the curve.
+#[derive(Clone, Debug, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct PathDoc {
+    /// The points in order.
+    pub points: Vec<EditPoint>,
+    /// Whether the path is closed.
+    pub closed: bool,
+    /// The curve scheme.
+    pub scheme: Scheme,
+}
+
+impl Default for PathDoc {
+    fn default() -> PathDoc {
+        PathDoc {
+            points: Vec::new(),
+            closed: false,
+            scheme: Scheme::Kappa,
+        }
+    }
+}
+
+/// A piece of the path between corners: input point indices in order (the ends are corners
+/// or path ends) and whether it is one closed curve.
+#[derive(Clone, Debug, PartialEq)]
+struct PieceSpec {
+    indices: Vec<usize>,
+    closed: bool,
+}
+
+/// The pieces of a document (see the module docs).
+fn pieces_of(doc: &PathDoc) -> Vec<PieceSpec> {
+    let n = doc.points.len();
+    if n < 2 {
+        return Vec::new();
+    }
+    let closed = doc.closed && n >= 3;
+    let corners: Vec<usize> = (0..n).filter(|&i| doc.points[i].corner).collect();
+    if closed && corners.is_empty() {
+        return vec![PieceSpec {
+            indices: (0..n).collect(),
+            closed: true,
+        }];
+    }
+    let mut out = Vec::new();
+    if closed {
+        // From each corner to the next, cyclically.
+        for (k, &c) in corners.iter().enumerate() {
+            let next = corners[(k + 1) % corners.len()];
+            let mut indices = vec![c];
+            let mut i = c;
+            loop {
+                i = (i + 1) % n;
+                indices.push(i);
+                if i == next {
+                    break;
+                }
+            }
+            out.push(PieceSpec {
+                indices,
+                closed: false,
+            });
+        }
+    } else {
+        let mut start = 0;
+        for i in 1..n {
+            if i == n - 1 || doc.points[i].corner {
+                out.push(PieceSpec {
+                    indices: (start..=i).collect(),
+                    closed: false,
+                });
+                start = i;
+            }
+        }
+    }
+    out
+}
+
+/// A solved piece: its spec, its solver (kept for warm re-solves) and its last curve.
+#[derive(Clone, Debug)]
+struct Piece {
+    spec: PieceSpec,
+    solver: Solver,
+    spline: Option<Spline>,
+    /// Why the last solve failed (the curve is then that of an earlier state).
+    error: Option<Error>,
+}
+
+/// What an edit did.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Change {
+    /// Pieces re-solved (indices into [`Editor::pieces`]).
+    pub resolved: Vec<usize>,
+    /// Solver iterations spent, over all re-solved pieces.
+    pub iterations: usize,
+    /// Whether the piece structure changed (pieces added, removed or re-cut).
+    pub restructured: bool,
+    /// Pieces that could not be solved and kept their previous curve, with the reason.
+    pub errors: Vec<(usize, Error)>,
+}
+
+/// The result of [`Editor::hit_test`]: the nearest point on the curve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Hit {
+    /// The piece.
+    pub piece: usize,
+    /// The segment within the piece.
+    pub segment: usize,
+    /// The parameter on that segment.
+    pub t: f64,
+    /// The nearest curve point.
+    pub point: Point,
+    /// Its distance from the query point.
+    pub distance: f64,
+}
+
+/// What an edit changed, for choosing the re-solve.
+enum Touched {
+    /// The positions of these points (the same pieces).
+    Positions(Vec<usize>),
+    /// The shapes (or the scheme) of these points (the same pieces).
+    Shapes(Vec<usize>),
+    /// Anything else: the pieces are re-cut.
+    Structure,
+}
+
+/// A snapshot for undo/redo: the document and the curves shown for it.
+#[derive(Clone, Debug)]
+struct Snapshot {
+    doc: PathDoc,
+    splines: Vec<(Option<Spline>, Option<Error>)>,
+}
+
+/// How a piece is re-solved.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Resolve {
+    /// From scratch.
+    Cold,
+    /// Warm, after its points moved.
+    Positions,
+    /// Warm, after its shapes or scheme changed.
+    Shapes,
+}
+
+/// Maximum undo steps kept.
+const UNDO_LIMIT: usize = 1000;
+
+/// The editing engine (see the module docs).
+#[derive(Clone, Debug, Default)]
+pub struct Editor {
+    doc: PathDoc,
+    pieces: Vec<Piece>,
+    undo: Vec<Snapshot>,
+    redo: Vec<Snapshot>,
+}
+
+impl Editor {
+    /// An empty editor for `scheme`.
+    pub fn new(scheme: Scheme) -> Editor {
+        Editor {
+            doc: PathDoc {
+                scheme,
+                ..PathDoc::default()
+            },
+            ..Editor::default()
+        }
+    }
+
+    /// An editor showing `doc` (solved from scratch).
+    pub fn from_doc(doc: PathDoc) -> (Editor, Change) {
+        let mut e = Editor {
+            doc,
+            ..Editor::default()
+        };
+        let change = e.rebuild();
+        (e, change)
+    }
+
+    /// The document.
+    pub fn doc(&self) -> &PathDoc {
+        &self.doc
+    }
+
+    /// The number of pieces (see the module docs).
+    pub fn pieces(&self) -> usize {
+        self.pieces.len()
+    }
+
+    /// The solved curve of piece `k` (`None` if it has never been solved).
+    pub fn piece_spline(&self, k: usize) -> Option<&Spline> {
+        self.pieces.get(k).and_then(|p| p.spline.as_ref())
+    }
+
+    /// Why the last solve of piece `k` failed, if it did: its curve is then the last one
+    /// that solved (`None` also for out-of-range `k`).
+    pub fn piece_error(&self, k: usize) -> Option<&Error> {
+        self.pieces.get(k).and_then(|p| p.error.as_ref())
+    }
+
+    /// The input point indices of piece `k`.
+    pub fn piece_points(&self, k: usize) -> &[usize] {
+        self.pieces.get(k).map_or(&[], |p| &p.spec.indices[..])
+    }
+
+    /// The default shape for new points.
+    fn default_shape(&self) -> f64 {
+        let prev = self.doc.points.last().map(|p| p.shape);
+        let (min, max) = self.doc.scheme.shape_range();
+        match prev {
+            Some(a) if a >= min && (a < max || min == max) => a,
+            _ => self.doc.scheme.neutral_shape(),
+        }
+    }
+
+    /// Appends a point at the end of the path.
+    pub fn add_point(&mut self, p: Point) -> Change {
+        let shape = self.default_shape();
+        self.edit(|doc| {
+            doc.points.push(EditPoint {
+                x: p.x,
+                y: p.y,
+                shape,
+                corner: false,
+            });
+            Touched::Structure
+        })
+    }
+
+    /// Inserts a point on the curve at the location nearest to `p` (between the two input
+    /// points whose stretch of curve it falls on), so that the curve changes little. Returns
+    /// `None` (and changes nothing) if the curve is empty.
+    pub fn insert_on_curve(&mut self, p: Point) -> Option<(usize, Change)> {
+        let hit = self.hit_test(p)?;
+        let piece = &self.pieces[hit.piece];
+        let spline = piece.spline.as_ref()?;
+        let seg = spline.segments()[hit.segment];
+        let idx = &piece.spec.indices;
+        // Segment j peaks at the piece's point j (closed) or j + 1 (open); before its peak it
+        // runs from the previous point.
+        let peak = if piece.spec.closed {
+            hit.segment
+        } else if idx.len() == 2 {
+            // A straight two-point piece: insert between its ends.
+            0
+        } else {
+            hit.segment + 1
+        };
+        let after_local = if idx.len() == 2 || hit.t >= seg.t_max {
+            peak
+        } else {
+            peak + idx.len() - 1
+        } % idx.len();
+        let after = idx[after_local];
+        let at = after + 1;
+        let shape = self.doc.points[after].shape;
+        let change = self.edit(|doc| {
+            doc.points.insert(
+                at,
+                EditPoint {
+                    x: hit.point.x,
+                    y: hit.point.y,
+                    shape,
+                    corner: false,
+                },
+            );
+            Touched::Structure
+        });
+        Some((at, change))
+    }
+
+    /// Moves point `i` to `p` (the drag case: only the pieces holding `i` are re-solved,
+    /// warm). Out-of-range indices change nothing.
+    pub fn move_point(&mut self, i: usize, p: Point) -> Change {
+        if i >= self.doc.points.len() {
+            return Change::default();
+        }
+        self.edit(|doc| {
+            doc.points[i].x = p.x;
+            doc.points[i].y = p.y;
+            Touched::Positions(vec![i])
+        })
+    }
+
+    /// Deletes point `i`.
+    pub fn delete_point(&mut self, i: usize) -> Change {
+        if i >= self.doc.points.len() {
+            return Change::default();
+        }
+        self.edit(|doc| {
+            doc.points.remove(i);
+            Touched::Structure
+        })
+    }
+
+    /// Sets the shape of point `i` (validated by the scheme when solved).
+    pub fn set_shape(&mut self, i: usize, a: f64) -> Change {
+        if i >= self.doc.points.len() {
+            return Change::default();
+        }
+        self.edit(|doc| {
+            doc.points[i].shape = a;
+            Touched::Shapes(vec![i])
+        })
+    }
+
+    /// Toggles the corner flag of point `i`.
+    pub fn toggle_corner(&mut self, i: usize) -> Change {
+        if i >= self.doc.points.len() {
+            return Change::default();
+        }
+        self.edit(|doc| {
+            doc.points[i].corner = !doc.points[i].corner;
+            Touched::Structure
+        })
+    }
+
+    /// Opens or closes the path.
+    pub fn set_closed(&mut self, closed: bool) -> Change {
+        self.edit(|doc| {
+            doc.closed = closed;
+            Touched::Structure
+        })
+    }
+
+    /// Switches the scheme; shapes outside the new scheme's range are moved to its default.
+    pub fn set_scheme(&mut self, scheme: Scheme) -> Change {
+        self.edit(|doc| {
+            doc.scheme = scheme;
+            let (min, max) = scheme.shape_range();
+            for p in &mut doc.points {
+                if scheme == Scheme::Kappa {
+                    continue;
+                }
+                if !(p.shape >= min && p.shape < max) {
+                    p.shape = scheme.neutral_shape();
+                }
+            }
+            Touched::Shapes((0..doc.points.len()).collect())
+        })
+    }
+
+    /// Undoes the last edit; `false` if there is none.
+    pub fn undo(&mut self) -> bool {
+        match self.undo.pop() {
+            Some(snap) => {
+                let current = self.snapshot();
+                self.redo.push(current);
+                self.restore(snap);
+                true
+            }
+            None => false,
+        }
+    }
+
+    /// Redoes the last undone edit; `false` if there is none.
+    pub fn redo(&mut self) -> bool {
+        match self.redo.pop() {
+            Some(snap) => {
+                let current = self.snapshot();
+                self.undo.push(current);
+                self.restore(snap);
+                true
+            }
+            None => false,
+        }
+    }
+
+    fn snapshot(&self) -> Snapshot {
+        Snapshot {
+            doc: self.doc.clone(),
+            splines: self
+                .pieces
+                .iter()
+                .map(|p| (p.spline.clone(), p.error.clone()))
+                .collect(),
+        }
+    }
+
+    /// Restores a snapshot: the document and exactly the curves shown for it; the solvers
+    /// are primed by a solve of the restored document so that later edits start warm.
+    fn restore(&mut self, snap: Snapshot) {
+        self.doc = snap.doc;
+        self.rebuild();
+        for (piece, (spline, error)) in self.pieces.iter_mut().zip(snap.splines) {
+            piece.spline = spline;
+            piece.error = error;
+        }
+    }
+
+    /// Applies an edit to the document and re-solves what it touched.
+    fn edit(&mut self, f: impl FnOnce(&mut PathDoc) -> Touched) -> Change {
+        let before = self.snapshot();
+        let touched = f(&mut self.doc);
+        self.undo.push(before);
+        if self.undo.len() > UNDO_LIMIT {
+            self.undo.remove(0);
+        }
+        self.redo.clear();
+        let specs = pieces_of(&self.doc);
+        let same = specs.len() == self.pieces.len()
+            && specs.iter().zip(&self.pieces).all(|(s, p)| *s == p.spec);
+        let (points, how) = match touched {
+            Touched::Positions(p) if same => (p, Resolve::Positions),
+            Touched::Shapes(p) if same => (p, Resolve::Shapes),
+            _ => return self.rebuild(),
+        };
+        let mut change = Change::default();
+        for k in 0..self.pieces.len() {
+            if self.pieces[k]
+                .spec
+                .indices
+                .iter()
+                .any(|i| points.contains(i))
+            {
+                self.solve_piece(k, how, &mut change);
+            }
+        }
+        change
+    }
+
+    /// Re-cuts the pieces and solves all of them, reusing the solver of an unchanged piece.
+    fn rebuild(&mut self) -> Change {
+        let specs = pieces_of(&self.doc);
+        let mut old = core::mem::take(&mut self.pieces);
+        let mut change = Change {
+            restructured: true,
+            ..Change::default()
+        };
+        for spec in specs {
+            let reuse = old.iter().position(|p| p.spec == spec);
+            let piece = match reuse {
+                Some(i) => old.swap_remove(i),
+                None => Piece {
+                    spec,
+                    solver: Solver::new(),
+                    spline: None,
+                    error: None,
+                },
+            };
+            self.pieces.push(piece);
+        }
+        for k in 0..self.pieces.len() {
+            self.solve_piece(k, Resolve::Cold, &mut change);
+        }
+        change
+    }
+
+    /// Solves piece `k` from the document, warm from its last solution where `how` allows.
+    fn solve_piece(&mut self, k: usize, how: Resolve, change: &mut Change) {
+        let doc = &self.doc;
+        let piece = &mut self.pieces[k];
+        let pts: Vec<Point> = piece
+            .spec
+            .indices
+            .iter()
+            .map(|&i| doc.points[i].point())
+            .collect();
+        let shape = match doc.scheme {
+            Scheme::Kappa => Shape::Neutral,
+            _ => {
+                let mut a: Vec<f64> = piece
+                    .spec
+                    .indices
+                    .iter()
+                    .map(|&i| doc.points[i].shape)
+                    .collect();
+                // Piece ends have no segment (open pieces): any admissible value will do.
+                if !piece.spec.closed {
+                    let neutral = doc.scheme.neutral_shape();
+                    let last = a.len() - 1;
+                    a[0] = neutral;
+                    a[last] = neutral;
+                }
+                Shape::PerPoint(a)
+            }
+        };
+        // Warm only from a solver whose last solve succeeded (its state is that curve).
+        let solved = piece.spline.is_some() && piece.error.is_none();
+        let result = match how {
+            Resolve::Positions if solved => piece.solver.resolve(&pts),
+            Resolve::Shapes if solved => piece.solver.resolve_shapes(doc.scheme, &shape),
+            _ => piece
+                .solver
+                .solve(&pts, piece.spec.closed, doc.scheme, &shape),
+        };
+        change.resolved.push(k);
+        match result {
+            Ok(s) => {
+                change.iterations += s.iterations();
+                piece.spline = Some(s);
+                piece.error = None;
+            }
+            Err(e) => {
+                piece.error = Some(e.clone());
+                change.errors.push((k, e));
+            }
+        }
+    }
+
+    /// The whole path as a kurbo path (one subpath per piece; a closed path without corners
+    /// is one closed subpath): exact for κ and εκ-cubic; εκ-trig pieces are fitted by
+    /// Hermite subdivision within 1e-4 of their size (fast enough for every drag; export
+    /// through [`Editor::piece_spline`] and [`Spline::fit`] for kurbo's fewer cubics).
+    pub fn to_bezpath(&self) -> BezPath {
+        let options = FitOptions {
+            method: FitMethod::Hermite,
+            ..FitOptions::default()
+        };
+        let mut out = BezPath::new();
+        for piece in &self.pieces {
+            if let Some(s) = &piece.spline {
+                let path = if s.scheme().is_polynomial() {
+                    s.to_bezpath()
+                } else {
+                    // A solved curve is finite, so fitting it cannot fail.
+                    s.fit(&options).map(|f| f.path).unwrap_or_default()
+                };
+                for el in path.elements() {
+                    out.push(*el);
+                }
+            }
+        }
+        out
+    }
+
+    /// A curvature comb of the exact curve, `samples` teeth per segment.
+    pub fn curvature_comb(&self, scale: f64, samples: usize) -> BezPath {
+        let mut out = BezPath::new();
+        for piece in &self.pieces {
+            if let Some(s) = &piece.spline {
+                for el in s.curvature_comb(scale, samples).elements() {
+                    out.push(*el);
+                }
+            }
+        }
+        out
+    }
+
+    /// The nearest point of the curve to `p`, or `None` if there is no curve.
+    pub fn hit_test(&self, p: Point) -> Option<Hit> {
+        let mut best: Option<Hit> = None;
+        for (k, piece) in self.pieces.iter().enumerate() {
+            let Some(spline) = &piece.spline else {
+                continue;
+            };
+            for (j, seg) in spline.segments().iter().enumerate() {
+                let (t, q) = nearest_on_segment(seg, p);
+                let d = (q - p).hypot();
+                if best.map_or(true, |b| d < b.distance) {
+                    best = Some(Hit {
+                        piece: k,
+                        segment: j,
+                        t,
+                        point: q,
+                        distance: d,
+                    });
+                }
+            }
+        }
+        best
+    }
+
+    /// The path as an SVG document of the given size (user units), stroked, optionally
+    /// with its points.
+    pub fn to_svg(&self, width: f64, height: f64, with_points: bool) -> String {
+        use core::fmt::Write as _;
+        let d = crate::svg_path_data(&self.to_bezpath());
+        let mut out = format!(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{width}\" height=\"{height}\" \
+             viewBox=\"0 0 {width} {height}\">\n<path d=\"{}\" fill=\"none\" stroke=\"black\"/>\n",
+            d
+        );
+        if with_points {
+            for q in &self.doc.points {
+                let _ = writeln!(
+                    out,
+                    "<circle cx=\"{}\" cy=\"{}\" r=\"3\" fill=\"red\"/>",
+                    q.x, q.y
+                );
+            }
+        }
+        out.push_str("</svg>\n");
+        out
+    }
+}
+
+/// The nearest point of a segment to `p`: 64 samples, then golden-section refinement.
+fn nearest_on_segment(seg: &Segment<Point>, p: Point) -> (f64, Point) {
+    const SAMPLES: usize = 64;
+    let dist = |t: f64| (seg.eval(t) - p).hypot2();
+    let mut best = 0;
+    let mut best_d = f64::INFINITY;
+    for i in 0..=SAMPLES {
+        let d = dist(i as f64 / SAMPLES as f64);
+        if d < best_d {
+            best = i;
+            best_d = d;
+        }
+    }
+    let (mut a, mut b) = (
+        best.saturating_sub(1) as f64 / SAMPLES as f64,
+        (best + 1).min(SAMPLES) as f64 / SAMPLES as f64,
+    );
+    let g = 0.5 * (5f64.sqrt() - 1.0);
+    for _ in 0..50 {
+        let (x1, x2) = (b - g * (b - a), a + g * (b - a));
+        if dist(x1) < dist(x2) {
+            b = x2;
+        } else {
+            a = x1;
+        }
+    }
+    let t = 0.5 * (a + b);
+    (t, seg.eval(t))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn doc(n: usize, closed: bool, corners: &[usize]) -> PathDoc {
+        PathDoc {
+            points: (0..n)
+                .map(|i| EditPoint {
+                    x: i as f64,
+                    y: (i * i) as f64,
+                    shape: 0.8,
+                    corner: corners.contains(&i),
+                })
+                .collect(),
+            closed,
+            scheme: Scheme::EkCubic,
+        }
+    }
+
+    #[test]
+    fn pieces_split_at_corners() {
+        let open = pieces_of(&doc(6, false, &[2, 4]));
+        let idx: Vec<Vec<usize>> = open.iter().map(|p| p.indices.clone()).collect();
+        assert_eq!(idx, [vec![0, 1, 2], vec![2, 3, 4], vec![4, 5]]);
+        let closed = pieces_of(&doc(6, true, &[1, 4]));
+        let idx: Vec<Vec<usize>> = closed.iter().map(|p| p.indices.clone()).collect();
+        assert_eq!(idx, [vec![1, 2, 3, 4], vec![4, 5, 0, 1]]);
+        let one = pieces_of(&doc(5, true, &[3]));
+        assert_eq!(one[0].indices, [3, 4, 0, 1, 2, 3]);
+        assert!(!one[0].closed);
+        let smooth = pieces_of(&doc(5, true, &[]));
+        assert!(smooth[0].closed && smooth.len() == 1);
+        assert!(pieces_of(&doc(1, false, &[])).is_empty());
+        // A "closed" path of two points is drawn open.
+        assert!(!pieces_of(&doc(2, true, &[]))[0].closed);
+    }
+}

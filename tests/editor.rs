@@ -1,0 +1,461 @@
+//! The path-tool engine: random edit sequences keep every property of the curves, undo/redo
+//! restore exactly, inserting on the curve barely changes it, corners break tangents.
+
+mod common;
+
+use kappa::editor::{EditPoint, Editor, PathDoc};
+use kappa::Scheme;
+use kurbo::{ParamCurve, Point};
+use proptest::prelude::*;
+
+/// Every piece whose curve matches the document: each of its points lies on its segment at
+/// `t_max`, |κ| is equal on both sides of every joint, and |κ| is locally maximal at `t_max`
+/// wherever the segment reports a maximum (the foundation's checks). Warm re-solves may
+/// follow another solution branch than a cold solve; both must have these properties.
+fn check(e: &Editor) {
+    let doc = e.doc();
+    for k in 0..e.pieces() {
+        let Some(spline) = e.piece_spline(k) else {
+            continue;
+        };
+        if e.piece_error(k).is_some() {
+            // A stale curve: its last solve failed, which the edit reported.
+            continue;
+        }
+        let pts: Vec<Point> = e
+            .piece_points(k)
+            .iter()
+            .map(|&i| doc.points[i].point())
+            .collect();
+        let interior: Vec<Point> = if spline.is_closed() {
+            pts.clone()
+        } else if pts.len() == 2 {
+            vec![pts[0].midpoint(pts[1])]
+        } else {
+            pts[1..pts.len() - 1].to_vec()
+        };
+        let size = pts
+            .iter()
+            .fold(kurbo::Rect::from_points(pts[0], pts[0]), |r, &p| {
+                r.union_pt(p)
+            });
+        let size = size.width().max(size.height());
+        let segs = spline.segments();
+        assert_eq!(segs.len(), interior.len());
+        // Relative to the piece, with a floor at the rounding of the coordinates themselves
+        // (insertions can make pieces far smaller than their distance from the origin).
+        let far = pts
+            .iter()
+            .map(|p| p.x.abs().max(p.y.abs()))
+            .fold(0.0, f64::max);
+        for (seg, p) in segs.iter().zip(&interior) {
+            assert!(
+                (seg.eval(seg.t_max) - *p).hypot() <= 1e-9 * size + 1e-12 * far,
+                "piece {k} {:?}: point {p:?}, curve at t_max {:?} ({seg:?})",
+                e.piece_points(k),
+                seg.eval(seg.t_max)
+            );
+        }
+        let kmax = spline.max_abs_curvature();
+        // Straight pieces (two points, or collinear ones) have |κ| = 0 up to rounding:
+        // nothing to compare or peak.
+        if pts.len() == 2 || kmax * size < 1e-9 || size < 1e-9 * far || on_one_line(&pts, size) {
+            continue;
+        }
+        let joints = if spline.is_closed() {
+            segs.len()
+        } else {
+            segs.len() - 1
+        };
+        for j in 0..joints {
+            let (a, b) = (&segs[j], &segs[(j + 1) % segs.len()]);
+            let (ka, kb) = (a.curvature(1.0).abs(), b.curvature(0.0).abs());
+            assert!(
+                (ka - kb).abs() <= 1e-6 * kmax + 1e-12 / size,
+                "joint {j}: {ka} vs {kb}"
+            );
+        }
+        for seg in segs {
+            let t = seg.t_max;
+            if seg.extremum() == kappa::Extremum::Max && t > 1e-3 && t < 1.0 - 1e-3 {
+                // The largest |κ| near t_max (golden-section search within ±0.02, inside the
+                // segment) is at t_max,
+                // or |κ| is flat there (a degenerate stationary point).
+                let w = 0.02f64.min(0.5 * t).min(0.5 * (1.0 - t));
+                let found = common::golden_max(|x| seg.curvature(x).abs(), t - w, t + w);
+                let h = 1e-4;
+                let slope = (seg.curvature(t + h).abs() - seg.curvature(t - h).abs()) / (2.0 * h);
+                assert!(
+                    (found - t).abs() <= 1e-6 || slope.abs() <= 1e-6 * kmax + 1e-12 / size,
+                    "{:?} a={}: peak at {found}, t_max = {t}; piece {pts:?} closed {}",
+                    seg.scheme,
+                    seg.a,
+                    spline.is_closed()
+                );
+            }
+        }
+    }
+}
+
+/// Whether all points lie on one line, to 1e-9 of `size` (the solver's straight case).
+fn on_one_line(pts: &[Point], size: f64) -> bool {
+    let (a, b) = pts
+        .iter()
+        .flat_map(|p| pts.iter().map(move |q| (*p, *q)))
+        .max_by(|x, y| (x.0 - x.1).hypot2().total_cmp(&(y.0 - y.1).hypot2()))
+        .unwrap();
+    let d = b - a;
+    let len = d.hypot();
+    len == 0.0
+        || pts
+            .iter()
+            .all(|p| ((*p - a).cross(d) / len).abs() <= 1e-9 * size)
+}
+
+#[derive(Clone, Debug)]
+enum Op {
+    Add(f64, f64),
+    Move(usize, f64, f64),
+    Insert(f64, f64),
+    Delete(usize),
+    Shape(usize, f64),
+    Corner(usize),
+    Close(bool),
+    Scheme(usize),
+    Undo,
+    Redo,
+}
+
+fn op() -> impl Strategy<Value = Op> {
+    prop_oneof![
+        3 => (0.0f64..200.0, 0.0f64..200.0).prop_map(|(x, y)| Op::Add(x, y)),
+        3 => (0usize..20, -8.0f64..8.0, -8.0f64..8.0).prop_map(|(i, x, y)| Op::Move(i, x, y)),
+        1 => (0.0f64..200.0, 0.0f64..200.0).prop_map(|(x, y)| Op::Insert(x, y)),
+        1 => (0usize..20).prop_map(Op::Delete),
+        1 => (0usize..20, 0.7f64..0.95).prop_map(|(i, a)| Op::Shape(i, a)),
+        1 => (0usize..20).prop_map(Op::Corner),
+        1 => any::<bool>().prop_map(Op::Close),
+        1 => (0usize..3).prop_map(Op::Scheme),
+        1 => Just(Op::Undo),
+        1 => Just(Op::Redo),
+    ]
+}
+
+fn apply(e: &mut Editor, op: &Op) {
+    let n = e.doc().points.len().max(1);
+    match *op {
+        Op::Add(x, y) => {
+            e.add_point(Point::new(x, y));
+        }
+        Op::Move(i, dx, dy) => {
+            if let Some(p) = e.doc().points.get(i % n) {
+                let q = p.point() + kurbo::Vec2::new(dx, dy);
+                e.move_point(i % n, q);
+            }
+        }
+        Op::Insert(x, y) => {
+            e.insert_on_curve(Point::new(x, y));
+        }
+        Op::Delete(i) => {
+            e.delete_point(i % n);
+        }
+        Op::Shape(i, a) => {
+            e.set_shape(i % n, a);
+        }
+        Op::Corner(i) => {
+            e.toggle_corner(i % n);
+        }
+        Op::Close(c) => {
+            e.set_closed(c);
+        }
+        Op::Scheme(s) => {
+            e.set_scheme([Scheme::Kappa, Scheme::EkCubic, Scheme::EkTrig][s]);
+        }
+        Op::Undo => {
+            e.undo();
+        }
+        Op::Redo => {
+            e.redo();
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 60, ..ProptestConfig::default() })]
+
+    #[test]
+    fn random_edits_keep_the_curve_right_and_undo_restores_exactly(
+        ops in prop::collection::vec(op(), 1..40),
+    ) {
+        let mut e = Editor::new(Scheme::EkCubic);
+        let mut history = vec![(e.doc().clone(), e.to_bezpath())];
+        for op in &ops {
+            apply(&mut e, op);
+            check(&e);
+            if !matches!(op, Op::Undo | Op::Redo) {
+                history.push((e.doc().clone(), e.to_bezpath()));
+            }
+        }
+        // Undo everything that can be undone, then redo it: each state comes back exactly.
+        let mut states = vec![(e.doc().clone(), e.to_bezpath())];
+        while e.undo() {
+            states.push((e.doc().clone(), e.to_bezpath()));
+        }
+        prop_assert_eq!(e.doc(), &PathDoc { scheme: Scheme::EkCubic, ..PathDoc::default() });
+        for (doc, path) in states.iter().rev().skip(1) {
+            prop_assert!(e.redo());
+            prop_assert_eq!(e.doc(), doc);
+            prop_assert_eq!(&e.to_bezpath(), path);
+        }
+    }
+}
+
+fn wave(n: usize) -> Vec<Point> {
+    (0..n)
+        .map(|i| {
+            let x = i as f64 * 20.0;
+            Point::new(
+                x,
+                40.0 * (i as f64 * 0.9).sin() + 10.0 * ((i * i) % 7) as f64,
+            )
+        })
+        .collect()
+}
+
+/// A closed blob of `n` points, radius 100 ± 20.
+fn blob(n: usize) -> Vec<Point> {
+    (0..n)
+        .map(|i| {
+            let th = i as f64 / n as f64 * std::f64::consts::TAU;
+            let r = 100.0 + 20.0 * (3.0 * th).sin();
+            Point::new(110.0 + r * th.cos(), 110.0 + r * th.sin())
+        })
+        .collect()
+}
+
+fn sample_distance(from: &kurbo::BezPath, to: &kurbo::BezPath) -> f64 {
+    let targets: Vec<kurbo::PathSeg> = to.segments().collect();
+    let mut worst: f64 = 0.0;
+    for seg in from.segments() {
+        for i in 0..=20 {
+            let p = seg.eval(i as f64 / 20.0);
+            let d = targets
+                .iter()
+                .map(|s| kurbo::ParamCurveNearest::nearest(s, p, 1e-9).distance_sq)
+                .fold(f64::INFINITY, f64::min)
+                .sqrt();
+            worst = worst.max(d);
+        }
+    }
+    worst
+}
+
+#[test]
+fn inserting_on_the_curve_barely_changes_it() {
+    // For each scheme, insert a point at the middle of every stretch between two points of a
+    // 12-point wave: the new curve stays within 2% of the path's size of the old one, and
+    // the old curve passes through the new point exactly.
+    let mut worst: f64 = 0.0;
+    for scheme in [Scheme::Kappa, Scheme::EkCubic, Scheme::EkTrig] {
+        for closed in [false, true] {
+            let pts = if closed { blob(12) } else { wave(12) };
+            let size = 220.0;
+            for target in 1..11 {
+                let mut e = Editor::new(scheme);
+                for &p in &pts {
+                    e.add_point(p);
+                }
+                e.set_closed(closed);
+                let before = e.to_bezpath();
+                // A point on the curve between points target and target + 1.
+                let hit = e.hit_test(pts[target].midpoint(pts[target + 1])).unwrap();
+                let (at, change) = e.insert_on_curve(hit.point).unwrap();
+                assert!(
+                    change.errors.is_empty(),
+                    "{scheme:?} closed={closed} at {target}: {change:?}"
+                );
+                assert_eq!(e.doc().points.len(), 13);
+                assert!((e.doc().points[at].point() - hit.point).hypot() < 1e-6);
+                assert!(
+                    at == target + 1,
+                    "inserted at {at}, expected {}",
+                    target + 1
+                );
+                let after = e.to_bezpath();
+                let d = sample_distance(&before, &after).max(sample_distance(&after, &before));
+                worst = worst.max(d / size);
+                assert!(
+                    d <= 0.02 * size,
+                    "{scheme:?} closed={closed} at {target}: moved {d}"
+                );
+            }
+        }
+    }
+    println!(
+        "largest change after an insertion: {:.4} of the size",
+        worst
+    );
+}
+
+#[test]
+fn corners_break_tangents_and_pieces_interpolate() {
+    let mut e = Editor::new(Scheme::EkCubic);
+    for p in wave(9) {
+        e.add_point(p);
+    }
+    e.toggle_corner(4);
+    assert_eq!(e.pieces(), 2);
+    assert_eq!(e.piece_points(0), &[0, 1, 2, 3, 4]);
+    assert_eq!(e.piece_points(1), &[4, 5, 6, 7, 8]);
+    let a = e.piece_spline(0).unwrap().to_bezpath();
+    let b = e.piece_spline(1).unwrap().to_bezpath();
+    let end = a.segments().last().unwrap();
+    let start = b.segments().next().unwrap();
+    // Both pieces pass through the corner point; the tangents there differ.
+    assert_eq!(end.end(), e.doc().points[4].point());
+    assert_eq!(start.start(), e.doc().points[4].point());
+    let t0 = (end.end() - end.eval(0.999)).normalize();
+    let t1 = (start.eval(0.001) - start.start()).normalize();
+    assert!(t0.cross(t1).abs() > 0.05, "no tangent break at the corner");
+    // Closing with the corner: one open piece from the corner round to itself.
+    e.set_closed(true);
+    assert_eq!(e.pieces(), 1);
+    assert_eq!(e.piece_points(0), &[4, 5, 6, 7, 8, 0, 1, 2, 3, 4]);
+    e.toggle_corner(4);
+    assert_eq!(e.pieces(), 1);
+    assert!(e.piece_spline(0).unwrap().is_closed());
+}
+
+#[test]
+fn drags_are_warm_and_errors_keep_the_last_curve() {
+    let mut e = Editor::new(Scheme::EkTrig);
+    for p in wave(20) {
+        e.add_point(p);
+    }
+    let cold = e.set_shape(5, 0.8);
+    let mut p = e.doc().points[7].point();
+    let mut total = 0;
+    for _ in 0..20 {
+        p.y += 0.5;
+        let c = e.move_point(7, p);
+        assert!(c.errors.is_empty() && !c.restructured);
+        assert_eq!(c.resolved, [0]);
+        total += c.iterations;
+    }
+    assert!(
+        total <= 20 * 8,
+        "warm drags took {total} iterations (cold edit: {cold:?})"
+    );
+    check(&e);
+    // Drag a point onto its neighbour: the piece keeps its curve and says why.
+    let before = e.to_bezpath();
+    let q = e.doc().points[8].point();
+    let c = e.move_point(7, q);
+    assert_eq!(c.errors.len(), 1);
+    assert!(matches!(c.errors[0].1, kappa::Error::RepeatedPoint { .. }));
+    assert_eq!(e.to_bezpath(), before);
+    // Dragging on recovers.
+    let c = e.move_point(7, q + kurbo::Vec2::new(5.0, 5.0));
+    assert!(c.errors.is_empty());
+    check(&e);
+}
+
+#[test]
+fn hit_test_finds_the_nearest_curve_point() {
+    let mut e = Editor::new(Scheme::Kappa);
+    assert!(e.hit_test(Point::ZERO).is_none());
+    for p in wave(6) {
+        e.add_point(p);
+    }
+    let path = e.to_bezpath();
+    for seg in path.segments() {
+        let on = seg.eval(0.3);
+        let hit = e.hit_test(on).unwrap();
+        assert!(hit.distance < 1e-6, "{hit:?}");
+    }
+    // Off the curve: the distance is that of the nearest point of the path.
+    let q = Point::new(50.0, 120.0);
+    let hit = e.hit_test(q).unwrap();
+    let best = path
+        .segments()
+        .map(|s| {
+            kurbo::ParamCurveNearest::nearest(&s, q, 1e-9)
+                .distance_sq
+                .sqrt()
+        })
+        .fold(f64::INFINITY, f64::min);
+    assert!((hit.distance - best).abs() < 1e-6);
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn document_round_trips_through_json() {
+    let mut e = Editor::new(Scheme::EkTrig);
+    for p in wave(5) {
+        e.add_point(p);
+    }
+    e.toggle_corner(2);
+    e.set_shape(1, 0.85);
+    let json = serde_json::to_string(e.doc()).unwrap();
+    assert!(json.contains("\"ek-trig\""));
+    let doc: PathDoc = serde_json::from_str(&json).unwrap();
+    assert_eq!(&doc, e.doc());
+    let (f, change) = Editor::from_doc(doc);
+    assert!(change.errors.is_empty());
+    // Solved from scratch: the same curve as the edited one, to solver precision.
+    assert_eq!(f.pieces(), e.pieces());
+    for k in 0..f.pieces() {
+        let (a, b) = (f.piece_spline(k).unwrap(), e.piece_spline(k).unwrap());
+        for (x, y) in a.segments().iter().zip(b.segments()) {
+            assert!((x.t_max - y.t_max).abs() < 1e-9);
+            assert!((x.q[1] - y.q[1]).hypot() < 1e-9);
+        }
+    }
+    // A missing corner flag defaults to false.
+    let doc: PathDoc = serde_json::from_str(
+        r#"{"points": [{"x": 0, "y": 0, "shape": 0.7}], "closed": false, "scheme": "kappa"}"#,
+    )
+    .unwrap();
+    assert_eq!(
+        doc.points[0],
+        EditPoint {
+            x: 0.0,
+            y: 0.0,
+            shape: 0.7,
+            corner: false
+        }
+    );
+}
+
+#[cfg(feature = "render")]
+#[test]
+fn svg_import_and_export() {
+    let svg = r#"<svg xmlns="http://www.w3.org/2000/svg" width="200" height="200">
+        <polyline points="10,10 50,40 90,10 130,40" fill="none" stroke="black"/>
+        <g transform="translate(100 100)"><polygon points="0,0 40,0 20,30"/></g>
+        <path d="M 0 150 C 20 130 40 170 60 150 L 80 190 Z"/>
+    </svg>"#;
+    let docs = kappa::editor::import_svg(svg, Scheme::Kappa).unwrap();
+    assert_eq!(docs.len(), 3);
+    assert!(!docs[0].closed && docs[0].points.len() == 4);
+    assert_eq!(docs[0].points[1].point(), Point::new(50.0, 40.0));
+    assert!(docs[1].closed && docs[1].points.len() == 3);
+    assert_eq!(docs[1].points[2].point(), Point::new(120.0, 130.0));
+    assert!(docs[2].closed && docs[2].points.len() == 3);
+    assert_eq!(docs[2].points[1].point(), Point::new(60.0, 150.0));
+    assert!(matches!(
+        kappa::editor::import_svg("not svg", Scheme::Kappa),
+        Err(kappa::Error::InvalidSvg(_))
+    ));
+    // Export: the path data of the solved curve and the points.
+    let (e, _) = Editor::from_doc(docs[0].clone());
+    let out = e.to_svg(200.0, 200.0, true);
+    assert!(out.starts_with("<svg") && out.contains("<path d=\"M10,10 Q"));
+    assert_eq!(out.matches("<circle").count(), 4);
+    // And back: the exported SVG's path vertices are the curve's segment ends.
+    let again = kappa::editor::import_svg(&out, Scheme::Kappa).unwrap();
+    assert_eq!(
+        again[0].points.first().unwrap().point(),
+        Point::new(10.0, 10.0)
+    );
+}
