@@ -146,6 +146,18 @@ fn g2_floor(curve: &SpaceCurve, before: usize, after: usize, x: f64) -> f64 {
 /// every input point that was not given up, and that |κ| peaks at each input point on the
 /// quadratic piece holding it.
 fn check_curve(curve: &SpaceCurve, pts: &[Point3], closed: bool, label: &str) -> Measured {
+    check_curve_with(curve, pts, closed, label, 1e-4)
+}
+
+/// [`check_curve`] with the allowed distance of a point given up at a joint, relative to
+/// the drawing size (the miss is O(r²) in the replaced fraction r).
+fn check_curve_with(
+    curve: &SpaceCurve,
+    pts: &[Point3],
+    closed: bool,
+    label: &str,
+    miss_tolerance: f64,
+) -> Measured {
     let size = size_of(pts);
     let x = curve
         .segments()
@@ -182,7 +194,10 @@ fn check_curve(curve: &SpaceCurve, pts: &[Point3], closed: bool, label: &str) ->
         let d = s.eval(t).distance(*p);
         if missed.contains(&k) {
             // Given up at a joint: near the curve, O(r²) away.
-            assert!(d <= 1e-4 * size, "{label}: missed point {k} is {d} away");
+            assert!(
+                d <= miss_tolerance * size,
+                "{label}: missed point {k} is {d} away (size {size})"
+            );
             continue;
         }
         assert!(d <= 1e-9 * size, "{label}: point {k} is {d} away");
@@ -227,7 +242,9 @@ proptest! {
         let options = SpaceOptions::default().with_replace(r);
         match SpaceCurve::new(&pts, closed, &options) {
             Ok(curve) => {
-                check_curve(&curve, &pts, closed, "proptest");
+                // A point given up at a joint is O(r²) off the curve.
+                let miss = 1e-4f64.max(1e-2 * r * r);
+                check_curve_with(&curve, &pts, closed, &format!("proptest r={r}"), miss);
             }
             Err(Error::NotConverged { .. }) => {}
             Err(e) => panic!("{e}"),
