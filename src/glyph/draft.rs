@@ -395,6 +395,23 @@ impl<'a> Target<'a> {
         best.sqrt()
     }
 
+    /// Whether the distance from `p` to the nearest segment exceeds `floor` (stops at the
+    /// first segment within `floor`).
+    fn distance_above(&self, p: Point, floor: f64) -> bool {
+        let f2 = floor * floor;
+        for (seg, b) in self.segs.iter().zip(&self.boxes) {
+            let dx = (b.x0 - p.x).max(p.x - b.x1).max(0.0);
+            let dy = (b.y0 - p.y).max(p.y - b.y1).max(0.0);
+            if dx * dx + dy * dy > f2 {
+                continue;
+            }
+            if seg.nearest(p, 1e-9).distance_sq <= f2 {
+                return false;
+            }
+        }
+        true
+    }
+
     /// The largest distance of a sample of `segs` (`k` per segment and the last end point)
     /// to this target, and where it is (segment index + t).
     fn deviation(&self, segs: &[PathSeg], k: usize) -> (f64, f64) {
@@ -607,8 +624,7 @@ impl Drafter<'_> {
             };
             let drafted: Vec<PathSeg> = solved.path.segments().collect();
             let target = Target::new(&drafted);
-            let (dev, _) = target.deviation(segs, k);
-            let insert = if dev > opts.tolerance && refinements < opts.max_refinements {
+            let insert = if refinements < opts.max_refinements {
                 self.worst_new_anchor(segs, &target, &anchors, k)
             } else {
                 None
@@ -767,7 +783,9 @@ impl Drafter<'_> {
         }
     }
 
-    /// The original sample furthest from the draft that is not too close to an anchor.
+    /// The original sample furthest from the draft (if further than the tolerance) that is not
+    /// too close to an anchor: one pass over `k` samples per segment, midway between the
+    /// measurement samples of [`Target::deviation`] (which would sit on anchors at joints).
     fn worst_new_anchor(
         &self,
         segs: &[PathSeg],
@@ -782,12 +800,13 @@ impl Drafter<'_> {
             for j in 0..k {
                 let t = (j as f64 + 0.5) / k as f64;
                 let p = seg.eval(t);
-                let d = drafted.distance(p);
-                if d <= self.options.tolerance || best.is_some_and(|(bd, _)| bd >= d) {
+                // Cheap rejections first: too close to an anchor, or no better than the best.
+                if points.iter().any(|q| (p - *q).hypot() < gap) {
                     continue;
                 }
-                if points.iter().all(|q| (p - *q).hypot() >= gap) {
-                    best = Some((d, i as f64 + t));
+                let floor = best.map_or(self.options.tolerance, |(bd, _)| bd);
+                if drafted.distance_above(p, floor) {
+                    best = Some((drafted.distance(p), i as f64 + t));
                 }
             }
         }
