@@ -92,6 +92,18 @@ pub enum Error {
         /// Why the solver gave up.
         reason: &'static str,
     },
+    /// A font could not be read or written (glyph outlines, UFO sources, compiled fonts).
+    #[error("font: {0}")]
+    Font(String),
+    /// The font maps no glyph to a character.
+    #[error("the font has no glyph for {ch:?}")]
+    MissingGlyph {
+        /// The character looked up.
+        ch: char,
+    },
+    /// lyon could not tessellate a path.
+    #[error("tessellation failed: {0}")]
+    Tessellation(String),
     /// The solver stopped at its iteration cap before reaching the tolerance.
     #[error("did not converge in {iterations} iterations (relative residual {residual:e})")]
     NotConverged {

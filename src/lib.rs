@@ -64,6 +64,8 @@
 //!   checks, G2 splines through points, viable regions.
 //! - `render` (feature `render`): deterministic SVG/PNG pictures and golden-image comparison.
 //! - `gallery` (features `render` + `serde`): the paper-style figures.
+//! - [`glyph`]: glyph outlines drafted as κ/εκ contours; TrueType quadratics and SVG out;
+//!   font import, UFO and compiled fonts (feature `font`); lyon meshes (feature `tessellate`).
 //! - [`BUILTIN_DESIGNS`]: the drawings of the εκ-curve paper, compiled in.
 //!
 //! # Method
@@ -80,7 +82,9 @@
 //!
 //! - `render`: [`render`] (resvg, tiny-skia).
 //! - `serde`: JSON drawings ([`Design`]).
-//! - `cli`: the `kappa` command-line tool (implies both).
+//! - `font`: glyph import (ttf-parser), UFO export (norad), compiled fonts (write-fonts).
+//! - `tessellate`: fill and stroke meshes (lyon).
+//! - `cli`: the `kappa` command-line tool (implies all of the above).
 //!
 //! A plain library build depends on kurbo, polycool and thiserror only.
 #![forbid(unsafe_code)]
@@ -97,6 +101,7 @@ mod error;
 pub mod fit;
 #[cfg(all(feature = "render", feature = "serde"))]
 pub mod gallery;
+pub mod glyph;
 pub mod intrinsic;
 mod linalg;
 mod point3;

@@ -1,0 +1,125 @@
+//! Glyph outlines read from TrueType/OpenType fonts with ttf-parser.
+//!
+//! Coordinates are **font units, y up**, exactly as stored: ttf-parser reports the points of
+//! the `glyf` (or `CFF`) outline in the glyph's own frame — x to the right, y up, the origin
+//! on the baseline at the glyph's left side bearing origin — and this module only widens them
+//! from `f32` to `f64` (exact). No scaling, no flip: to draw in y-down pixel coordinates apply
+//! `Affine::new([s, 0, 0, -s, x0, y0])` (see [`crate::glyph`]).
+
+use kurbo::BezPath;
+
+use crate::Error;
+
+/// A font whose glyph outlines can be read, borrowing the font file's bytes.
+#[derive(Clone)]
+pub struct FontOutlines<'a> {
+    face: ttf_parser::Face<'a>,
+}
+
+impl core::fmt::Debug for FontOutlines<'_> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("FontOutlines")
+            .field("units_per_em", &self.face.units_per_em())
+            .field("glyphs", &self.face.number_of_glyphs())
+            .finish()
+    }
+}
+
+/// One glyph's outline.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Glyph {
+    /// The character it was looked up by.
+    pub ch: char,
+    /// Its glyph id in the font.
+    pub id: u16,
+    /// The outline in font units (y up): one closed subpath per contour, lines and quadratic
+    /// Béziers for TrueType outlines (cubics for CFF), each contour ending back at its start.
+    pub path: BezPath,
+    /// The horizontal advance in font units.
+    pub advance: f64,
+}
+
+impl<'a> FontOutlines<'a> {
+    /// Parses the font (the first face of a collection).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Font`] when ttf-parser cannot read the data.
+    pub fn parse(data: &'a [u8]) -> Result<FontOutlines<'a>, Error> {
+        ttf_parser::Face::parse(data, 0)
+            .map(|face| FontOutlines { face })
+            .map_err(|e| Error::Font(format!("cannot parse the font: {e}")))
+    }
+
+    /// The size of the em square in font units (2048 for DejaVu Sans).
+    pub fn units_per_em(&self) -> f64 {
+        f64::from(self.face.units_per_em())
+    }
+
+    /// The typographic ascender in font units.
+    pub fn ascender(&self) -> f64 {
+        f64::from(self.face.ascender())
+    }
+
+    /// The typographic descender in font units (negative below the baseline).
+    pub fn descender(&self) -> f64 {
+        f64::from(self.face.descender())
+    }
+
+    /// The outline of the glyph the font maps `ch` to.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::MissingGlyph`] when the font has no glyph for `ch`; [`Error::Font`] when the
+    /// glyph's outline cannot be read. A glyph without contours (a space) gives an empty path.
+    pub fn glyph(&self, ch: char) -> Result<Glyph, Error> {
+        let id = self
+            .face
+            .glyph_index(ch)
+            .ok_or(Error::MissingGlyph { ch })?;
+        let mut builder = Builder(BezPath::new());
+        // `None` means "no outline" (empty glyph) or a malformed one; a glyph with a
+        // bounding box but nothing drawn would be the latter.
+        let bbox = self.face.outline_glyph(id, &mut builder);
+        if bbox.is_none() && !builder.0.elements().is_empty() {
+            return Err(Error::Font(format!("the outline of {ch:?} is malformed")));
+        }
+        let advance = f64::from(self.face.glyph_hor_advance(id).unwrap_or(0));
+        Ok(Glyph {
+            ch,
+            id: id.0,
+            path: builder.0,
+            advance,
+        })
+    }
+}
+
+/// Collects ttf-parser's outline calls into a kurbo path.
+struct Builder(BezPath);
+
+impl ttf_parser::OutlineBuilder for Builder {
+    fn move_to(&mut self, x: f32, y: f32) {
+        self.0.move_to((f64::from(x), f64::from(y)));
+    }
+
+    fn line_to(&mut self, x: f32, y: f32) {
+        self.0.line_to((f64::from(x), f64::from(y)));
+    }
+
+    fn quad_to(&mut self, x1: f32, y1: f32, x: f32, y: f32) {
+        self.0
+            .quad_to((f64::from(x1), f64::from(y1)), (f64::from(x), f64::from(y)));
+    }
+
+    fn curve_to(&mut self, x1: f32, y1: f32, x2: f32, y2: f32, x: f32, y: f32) {
+        self.0.curve_to(
+            (f64::from(x1), f64::from(y1)),
+            (f64::from(x2), f64::from(y2)),
+            (f64::from(x), f64::from(y)),
+        );
+    }
+
+    fn close(&mut self) {
+        self.0.close_path();
+    }
+}

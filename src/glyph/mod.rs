@@ -1,0 +1,154 @@
+//! Glyph outlines: drafted as κ- and εκ-curves, exported for fonts, tessellated for GPUs.
+//!
+//! A κ-curve is made of quadratic Béziers — what a TrueType `glyf` table stores — so a
+//! κ-drafted contour goes into a font with no approximation; εκ-cubic contours go exactly
+//! into cubic (UFO, CFF) outlines.
+//!
+//! - [`draft`]: from an outline, the points a designer would click (corners, on-curve
+//!   extrema, curvature peaks) and a κ/εκ contour through them, with the Hausdorff distance
+//!   to the original and the number of points; [`draft_points`] for user-given points.
+//! - [`to_quadratic`], [`to_svg`]: TrueType quadratic contours and SVG documents (no
+//!   feature needed).
+//! - feature `font`: [`FontOutlines`] reads outlines with ttf-parser; [`to_glif`] and
+//!   [`write_ufo`] write UFO sources with norad; [`compile_font`] builds a small TrueType
+//!   font with write-fonts.
+//! - feature `tessellate`: [`fill_mesh`] and [`stroke_mesh`] through lyon.
+//!
+//! # Coordinates
+//!
+//! Everything here is in **font units with y up**, the frame of the font's outlines (see
+//! [`FontOutlines`]): x to the right, y up, the glyph origin on the baseline. Pictures in y-down
+//! pixels flip y (`render::Scene` does it with `with_y_down(false)`; [`to_svg`] writes the
+//! flip as a transform).
+//!
+//! ```
+//! use kappa::glyph::{draft, DraftOptions};
+//! use kurbo::BezPath;
+//!
+//! // A rounded square, drawn as the font would store it (quadratics with implied points).
+//! let mut outline = BezPath::new();
+//! outline.move_to((500.0, 0.0));
+//! outline.quad_to((1000.0, 0.0), (1000.0, 500.0));
+//! outline.quad_to((1000.0, 1000.0), (500.0, 1000.0));
+//! outline.quad_to((0.0, 1000.0), (0.0, 500.0));
+//! outline.quad_to((0.0, 0.0), (500.0, 0.0));
+//! outline.close_path();
+//! let drafted = draft(&outline, &DraftOptions::for_units_per_em(1000.0))?;
+//! assert!(drafted.hausdorff.unwrap() <= 4.0 + 1e-9);
+//! assert!(drafted.anchor_count() >= 4);
+//! # Ok::<(), kappa::Error>(())
+//! ```
+
+mod draft;
+mod export;
+#[cfg(feature = "font")]
+mod font;
+#[cfg(feature = "font")]
+mod import;
+#[cfg(feature = "render")]
+mod picture;
+#[cfg(feature = "tessellate")]
+mod tessellate;
+
+pub use draft::{
+    draft, draft_points, hausdorff, Anchor, AnchorKind, DraftOptions, DraftShape, DraftedContour,
+    DraftedGlyph, Piece, AUTO_MAX_SHAPE, AUTO_MIN_TRIG_SHAPE, AUTO_RELATIVE_TOLERANCE,
+    AUTO_SECANT_STEPS, PEAK_MAX_RADIUS, PEAK_PROMINENCE,
+};
+#[cfg(feature = "font")]
+pub use export::{from_glif, to_glif, to_norad_glyph, write_ufo, FontGlyph};
+pub use export::{is_quadratic, quantize, to_quadratic, to_svg, Quadratic};
+#[cfg(feature = "font")]
+pub use font::{compile_font, FONT_FAMILY};
+#[cfg(feature = "font")]
+pub use import::{FontOutlines, Glyph};
+#[cfg(feature = "render")]
+pub use picture::{word_scene, PlacedGlyph};
+#[cfg(feature = "tessellate")]
+pub use tessellate::{fill_mesh, stroke_mesh, Mesh};
+
+use kurbo::{BezPath, PathEl, PathSeg, Point};
+
+/// The contours of a path: the segments of each subpath (kurbo's closing line included,
+/// segments of zero extent dropped) and whether it is closed.
+pub fn contours(path: &BezPath) -> Vec<(Vec<PathSeg>, bool)> {
+    let mut out = Vec::new();
+    let mut current = BezPath::new();
+    let mut flush = |current: &mut BezPath, closed: bool| {
+        if current.elements().is_empty() {
+            return;
+        }
+        let segs: Vec<PathSeg> = current.segments().filter(|s| !is_degenerate(s)).collect();
+        out.push((segs, closed));
+        *current = BezPath::new();
+    };
+    for el in path.elements() {
+        match el {
+            PathEl::MoveTo(_) => {
+                flush(&mut current, false);
+                current.push(*el);
+            }
+            PathEl::ClosePath => {
+                current.push(*el);
+                flush(&mut current, true);
+            }
+            el => current.push(*el),
+        }
+    }
+    flush(&mut current, false);
+    out
+}
+
+/// Whether all control points of a segment coincide.
+fn is_degenerate(seg: &PathSeg) -> bool {
+    let pts: &[Point] = match seg {
+        PathSeg::Line(l) => &[l.p0, l.p1],
+        PathSeg::Quad(q) => &[q.p0, q.p1, q.p2],
+        PathSeg::Cubic(c) => &[c.p0, c.p1, c.p2, c.p3],
+    };
+    pts.iter().all(|p| *p == pts[0])
+}
+
+/// The on-curve points a designer placed on an outline (see [`on_curve_points`] for the
+/// counting rule), without the font feature.
+pub fn on_curve_points(path: &BezPath) -> usize {
+    contours(path)
+        .iter()
+        .map(|(segs, closed)| on_curve_points_of(segs, *closed))
+        .sum()
+}
+
+/// The on-curve points of one contour: the segment end points, minus the TrueType *implied*
+/// ones — a joint of two quadratics exactly midway between their off-curve points is not
+/// stored in a `glyf` table (the reader puts it back), so no designer placed it. Open
+/// contours count both ends.
+pub(crate) fn on_curve_points_of(segs: &[PathSeg], closed: bool) -> usize {
+    let n = segs.len();
+    if n == 0 {
+        return 0;
+    }
+    let joints = if closed { n } else { n - 1 };
+    let implied = (0..joints)
+        .filter(|&j| {
+            let (prev, next) = if closed {
+                (segs[(j + n - 1) % n], segs[j])
+            } else {
+                (segs[j], segs[j + 1])
+            };
+            is_implied(prev, next)
+        })
+        .count();
+    joints - implied + if closed { 0 } else { 2 }
+}
+
+/// Whether the joint of two quadratics is the midpoint of their off-curve points.
+fn is_implied(prev: PathSeg, next: PathSeg) -> bool {
+    match (prev, next) {
+        (PathSeg::Quad(a), PathSeg::Quad(b)) => {
+            let mid: Point = a.p1.midpoint(b.p1);
+            let scale = a.p1.to_vec2().hypot().max(b.p1.to_vec2().hypot()).max(1.0);
+            (mid - a.p2).hypot() <= 1e-9 * scale
+        }
+        _ => false,
+    }
+}
