@@ -150,19 +150,7 @@ fn wants_picture(args: &BSplineArgs) -> bool {
 }
 
 fn write_pictures(args: &BSplineArgs, scene: &Scene) -> Result<()> {
-    if let Some(path) = &args.svg {
-        let svg = scene
-            .to_svg()
-            .map_err(|e| Failure::new(format!("cannot draw: {e}")))?;
-        failure::write_file(path, svg.as_bytes())?;
-    }
-    if let Some(path) = &args.png {
-        let png = scene
-            .render_png()
-            .map_err(|e| Failure::new(format!("cannot draw: {e}")))?;
-        failure::write_file(path, &png)?;
-    }
-    Ok(())
+    crate::picture::write_pictures(scene, args.svg.as_deref(), args.png.as_deref())
 }
 
 /// Parses the input JSON.

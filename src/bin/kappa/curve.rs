@@ -244,18 +244,7 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode> {
     };
     if args.svg.is_some() || args.png.is_some() {
         let scene = picture::scene(&solved, args.size, args.size);
-        if let Some(path) = &args.svg {
-            let svg = scene
-                .to_svg()
-                .map_err(|e| Failure::new(format!("cannot draw: {e}")))?;
-            failure::write_file(path, svg.as_bytes())?;
-        }
-        if let Some(path) = &args.png {
-            let png = scene
-                .render_png()
-                .map_err(|e| Failure::new(format!("cannot draw: {e}")))?;
-            failure::write_file(path, &png)?;
-        }
+        picture::write_pictures(&scene, args.svg.as_deref(), args.png.as_deref())?;
     }
     failure::print_stdout(&text)?;
     Ok(ExitCode::SUCCESS)

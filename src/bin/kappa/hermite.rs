@@ -170,19 +170,7 @@ fn draw(args: &HermiteArgs, seg: &IntrinsicSeg, hermite: &Hermite) -> Result<()>
     let points = [hermite.start.point, hermite.end.point];
     let scene = picture::scene(std::slice::from_ref(seg), &points, args.size, args.size)
         .map_err(|e| Failure::new(format!("cannot draw: {e}")))?;
-    if let Some(path) = &args.svg {
-        let svg = scene
-            .to_svg()
-            .map_err(|e| Failure::new(format!("cannot draw: {e}")))?;
-        failure::write_file(path, svg.as_bytes())?;
-    }
-    if let Some(path) = &args.png {
-        let png = scene
-            .render_png()
-            .map_err(|e| Failure::new(format!("cannot draw: {e}")))?;
-        failure::write_file(path, &png)?;
-    }
-    Ok(())
+    crate::picture::write_pictures(&scene, args.svg.as_deref(), args.png.as_deref())
 }
 
 /// Parses the input into Hermite data and a profile.
