@@ -5,8 +5,11 @@
 //! (Theorems 2.1 and 2.2), and the curvature from explicit Bézier derivatives, maximized by
 //! dense sampling of `d(κ²)/dt` and bisection on its sign changes. None of it uses the
 //! library's solver or its analysis module.
+
 // Index loops read like the formulas they implement.
 #![allow(clippy::needless_range_loop)]
+
+mod common;
 
 use kappa::analysis::CurvatureAnalysis;
 use kappa::{BSpline, BSpline3, BSplineCurvatureMax, Error, Point3};
@@ -1352,20 +1355,12 @@ mod golden {
 mod cli {
     use super::*;
     use serde_json::Value;
-    use std::io::Write;
-    use std::process::{Command, Output, Stdio};
+    use std::process::Output;
 
     fn kappa(args: &[&str], stdin: &str) -> Output {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_kappa"))
-            .arg("bspline")
-            .args(args)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("the kappa binary runs");
-        let _ = child.stdin.take().unwrap().write_all(stdin.as_bytes());
-        child.wait_with_output().unwrap()
+        let mut all = vec!["bspline"];
+        all.extend_from_slice(args);
+        crate::common::run_kappa(&all, stdin)
     }
 
     fn json(args: &[&str], stdin: &str) -> Value {

@@ -2,9 +2,10 @@
 //! the `diff`, `gallery` and `bench` subcommands. They run the built binary.
 #![cfg(feature = "cli")]
 
-use std::io::Write;
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output, Stdio};
+use std::process::Output;
 
 use kurbo::Point;
 use serde_json::Value;
@@ -22,16 +23,7 @@ const OPEN_POINTS: [[f64; 2]; 5] = [
 ];
 
 fn kappa(args: &[&str], stdin: &str) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_kappa"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the kappa binary runs");
-    // The tool may exit before reading stdin (argument errors); ignore a broken pipe.
-    let _ = child.stdin.take().unwrap().write_all(stdin.as_bytes());
-    child.wait_with_output().unwrap()
+    common::run_kappa(args, stdin)
 }
 
 fn stdout(out: &Output) -> String {

@@ -2,22 +2,15 @@
 //! its errors. They run the built binary.
 #![cfg(feature = "cli")]
 
-use std::io::Write;
-use std::process::{Command, Output, Stdio};
+mod common;
+
+use std::process::Output;
 
 use kurbo::{BezPath, ParamCurve, Point};
 use serde_json::Value;
 
 fn kappa(args: &[&str], stdin: &str) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_kappa"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the kappa binary runs");
-    let _ = child.stdin.take().unwrap().write_all(stdin.as_bytes());
-    child.wait_with_output().unwrap()
+    common::run_kappa(args, stdin)
 }
 
 fn json(args: &[&str], stdin: &str) -> Value {

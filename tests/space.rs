@@ -2,6 +2,8 @@
 //! joint, interpolation, peaks, the quartics' own extrema, planar input, options, errors,
 //! projections, exports and golden pictures.
 
+mod common;
+
 use kappa::analysis::{CurvatureAnalysis, SpaceBez};
 use kappa::fit::FitOptions;
 use kappa::space::{
@@ -1167,19 +1169,10 @@ mod golden {
 mod cli {
     use super::*;
     use serde_json::Value;
-    use std::io::Write;
-    use std::process::{Command, Output, Stdio};
+    use std::process::Output;
 
     fn kappa(args: &[&str], stdin: &str) -> Output {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_kappa"))
-            .args(args)
-            .stdin(Stdio::piped())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .expect("the kappa binary runs");
-        let _ = child.stdin.take().unwrap().write_all(stdin.as_bytes());
-        child.wait_with_output().unwrap()
+        crate::common::run_kappa(args, stdin)
     }
 
     fn input(pts: &[Point3], closed: bool, replace: Option<f64>) -> String {

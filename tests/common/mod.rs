@@ -133,3 +133,20 @@ pub fn golden_max(f: impl Fn(f64) -> f64, lo: f64, hi: f64) -> f64 {
     }
     0.5 * (a + b)
 }
+
+/// Runs the built `kappa` binary with `args`, feeding `stdin`.
+#[cfg(feature = "cli")]
+pub fn run_kappa(args: &[&str], stdin: &str) -> std::process::Output {
+    use std::io::Write;
+    use std::process::{Command, Stdio};
+    let mut child = Command::new(env!("CARGO_BIN_EXE_kappa"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("the kappa binary runs");
+    // The tool may exit before reading stdin (argument errors); ignore a broken pipe.
+    let _ = child.stdin.take().unwrap().write_all(stdin.as_bytes());
+    child.wait_with_output().unwrap()
+}
