@@ -85,6 +85,7 @@ fn check_against_library(v: &Value, ch: char, scheme: Scheme, shape: DraftShape)
     let h = f(&v["hausdorff"]);
     assert!(h <= tol, "Hausdorff {h} above the tolerance {tol}");
     assert_eq!(h, d.hausdorff.unwrap());
+    assert_eq!(v["within_tolerance"], Value::Bool(true));
     assert_eq!(n(&v["anchor_count"]), d.anchor_count());
     assert_eq!(n(&v["on_curve"]["explicit"]), d.original_on_curve());
     // With the implied points: one on-curve point per segment of a closed contour.
@@ -164,7 +165,8 @@ fn glyph_cli_kappa_all_formats() {
             "segments",
             "shape",
             "tolerance",
-            "units_per_em"
+            "units_per_em",
+            "within_tolerance"
         ]
     );
     assert_eq!(v["scheme"], Value::String("kappa".into()));
@@ -309,14 +311,27 @@ fn glyph_cli_ek_trig_global_shape() {
     assert!(shapes.iter().all(|&a| a == 0.8 || a == 2.0 / 3.0));
 }
 
-/// A looser tolerance is honoured and gives no more anchors.
+/// A looser tolerance is honoured and gives no more anchors; --simplify keeps the bound
+/// with no more anchors.
 #[test]
-fn glyph_cli_tolerance() {
+fn glyph_cli_tolerance_and_simplify() {
     let fine = glyph_json(&["--char", "o"]);
     let coarse = glyph_json(&["--char", "o", "--tolerance", "20"]);
     assert_eq!(f(&coarse["tolerance"]), 20.0);
     assert!(f(&coarse["hausdorff"]) <= 20.0);
+    assert_eq!(coarse["within_tolerance"], Value::Bool(true));
     assert!(n(&coarse["anchor_count"]) <= n(&fine["anchor_count"]));
+    let full = glyph_json(&["--char", "a"]);
+    let simple = glyph_json(&["--char", "a", "--simplify"]);
+    assert_eq!(simple["within_tolerance"], Value::Bool(true));
+    assert!(f(&simple["hausdorff"]) <= f(&simple["tolerance"]));
+    assert!(n(&simple["anchor_count"]) <= n(&full["anchor_count"]));
+    let mut options = DraftOptions::for_units_per_em(2048.0);
+    options.simplify = true;
+    let data = std::fs::read(font_path()).unwrap();
+    let font = FontOutlines::parse(&data).unwrap();
+    let d = draft(&font.glyph('a').unwrap().path, &options).unwrap();
+    assert_eq!(n(&simple["anchor_count"]), d.anchor_count());
 }
 
 /// Runs a failing command: exit 2, one `kappa: error:` line, nothing on stdout.

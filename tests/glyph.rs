@@ -77,17 +77,32 @@ fn glyph_import_font_units_y_up() {
     assert!(font.glyph(' ').unwrap().path.elements().is_empty());
 }
 
-/// Hausdorff bound, anchors on the original, corners kept, for κ and auto-shaped εκ-cubic.
+/// Every scheme and shape rule of the drafts: κ, and εκ-cubic and εκ-trig with their
+/// neutral shape, one global shape and the auto shape.
+const ALL_SCHEMES: [(Scheme, DraftShape); 7] = [
+    (Scheme::Kappa, DraftShape::Neutral),
+    (Scheme::EkCubic, DraftShape::Neutral),
+    (Scheme::EkCubic, DraftShape::Global(0.85)),
+    (Scheme::EkCubic, DraftShape::Auto),
+    (Scheme::EkTrig, DraftShape::Neutral),
+    (Scheme::EkTrig, DraftShape::Global(0.8)),
+    (Scheme::EkTrig, DraftShape::Auto),
+];
+
+/// Hausdorff bound, anchors on the original, corners kept, for every glyph of the word in
+/// every scheme.
 #[test]
 fn glyph_draft_sample_within_bound() {
-    for (scheme, shape) in [
-        (Scheme::Kappa, DraftShape::Neutral),
-        (Scheme::EkCubic, DraftShape::Auto),
-    ] {
+    for (scheme, shape) in ALL_SCHEMES {
         let tol = options(scheme, shape.clone()).tolerance;
         for (g, d) in drafted_word(scheme, shape.clone()) {
             let h = d.hausdorff.unwrap();
-            assert!(h <= tol, "{scheme:?} {}: Hausdorff {h} > {tol}", g.ch);
+            assert!(
+                h <= tol,
+                "{scheme:?} {shape:?} {}: Hausdorff {h} > {tol}",
+                g.ch
+            );
+            assert!(d.within_tolerance());
             // The reported piecewise distance bounds the outline's Hausdorff distance, measured
             // independently on 4x the samples (up to the sampling step).
             let whole = hausdorff(&g.path, &d.path, 64);
@@ -112,19 +127,64 @@ fn glyph_draft_sample_within_bound() {
                     assert!((segs[0].start() - first.point).hypot() < 1e-9);
                     assert!((segs.last().unwrap().end() - last.point).hypot() < 1e-9);
                 }
-                // The κ/εκ curve passes through every anchor.
+                // The κ/εκ curve passes through every anchor: exactly, and the fitted path
+                // of an εκ-trig curve within its fitting tolerance (tolerance / 20).
+                let fit = if scheme == Scheme::EkTrig {
+                    tol / 20.0
+                } else {
+                    0.0
+                };
                 for a in &piece.anchors {
+                    let exact = piece
+                        .spline
+                        .segments()
+                        .iter()
+                        .map(|s| (s.eval(s.t_max) - a.point).hypot())
+                        .fold(f64::INFINITY, f64::min);
+                    if piece.anchors.len() > 2 && (piece.closed || a.kind != AnchorKind::Corner) {
+                        assert!(exact < 1e-6, "curve misses its anchor by {exact}");
+                    }
                     let d = piece
                         .path
                         .segments()
                         .map(|s| s.nearest(a.point, 1e-12).distance_sq)
                         .fold(f64::INFINITY, f64::min)
                         .sqrt();
-                    assert!(d < 1e-6, "curve misses its anchor by {d}");
+                    assert!(d < fit + 1e-6, "path misses its anchor by {d}");
                 }
             }
             assert!(d.anchor_count() >= 4 && d.original_on_curve() >= 4);
         }
+    }
+}
+
+/// The simplification keeps every glyph of the word within the bound with no more anchors,
+/// and fewer in all.
+#[test]
+fn glyph_simplify_sample() {
+    for (scheme, shape) in [
+        (Scheme::Kappa, DraftShape::Neutral),
+        (Scheme::EkCubic, DraftShape::Auto),
+    ] {
+        let mut simple = options(scheme, shape.clone());
+        simple.simplify = true;
+        let data = font_data();
+        let font = FontOutlines::parse(&data).unwrap();
+        let (mut before, mut after) = (0, 0);
+        for (g, d) in drafted_word(scheme, shape.clone()) {
+            let s = draft(&g.path, &simple).unwrap();
+            let h = s.hausdorff.unwrap();
+            assert!(
+                h <= simple.tolerance && s.within_tolerance(),
+                "{}: {h}",
+                g.ch
+            );
+            assert!(hausdorff(&font.glyph(g.ch).unwrap().path, &s.path, 64) <= h + 0.5);
+            assert!(s.anchor_count() <= d.anchor_count(), "{}", g.ch);
+            before += d.anchor_count();
+            after += s.anchor_count();
+        }
+        assert!(after < before, "{scheme:?}: {after} vs {before}");
     }
 }
 

@@ -2,10 +2,10 @@
 //! write it as a picture (SVG, PNG), a UFO glyph (`.glif`) or a compiled TrueType font.
 //!
 //! The JSON output is a stable contract: `{"char", "glyph_id", "units_per_em", "scheme",
-//! "shape", "tolerance", "hausdorff", "anchor_count", "on_curve": {"explicit", "all"},
-//! "segments": {"line", "quad", "cubic"}, "contours": [{"closed", "anchors": [{"point",
-//! "kind", "a"}], "pieces", "hausdorff", "segments"}], "out": [{"file", "format",
-//! "segments", "exact", "max_error"}]}`.
+//! "shape", "tolerance", "hausdorff", "within_tolerance", "anchor_count", "on_curve":
+//! {"explicit", "all"}, "segments": {"line", "quad", "cubic"}, "contours": [{"closed",
+//! "anchors": [{"point", "kind", "a"}], "pieces", "hausdorff", "segments"}], "out":
+//! [{"file", "format", "segments", "exact", "max_error"}]}`.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -36,7 +36,7 @@ const QUAD_TOLERANCE: f64 = 0.5;
         files.\n\n\
         Coordinates are font units with y up, as the font stores them. The draft is refined \
         until every piece is within --tolerance of the original (two-sided Hausdorff \
-        distance).\n\n\
+        distance); --simplify then drops the anchors it can do without.\n\n\
         Output files, by extension (--out may be given several times):\n  \
         .svg, .png  a picture: the original filled in grey, the draft in black with its \
         curvature comb and anchors in red (--size pixels square)\n  \
@@ -47,6 +47,7 @@ const QUAD_TOLERANCE: f64 = 0.5;
         Output (stdout), one JSON object on one line:\n  \
         {\"char\": \"S\", \"glyph_id\": n, \"units_per_em\": u, \"scheme\": ..., \
         \"shape\": \"neutral\" | \"auto\" | a, \"tolerance\": t, \"hausdorff\": h, \
+        \"within_tolerance\": true, \
         \"anchor_count\": n, \"on_curve\": {\"explicit\": n, \"all\": n}, \
         \"segments\": {\"line\": n, \"quad\": n, \"cubic\": n}, \"contours\": [{\"closed\": true, \
         \"anchors\": [{\"point\": [x, y], \"kind\": \"corner\" | \"extremum\" | \"peak\" | \
@@ -55,7 +56,9 @@ const QUAD_TOLERANCE: f64 = 0.5;
         \"max_error\": e}, ...]}\n\
         'anchor_count' is the number of points a designer places (shared piece ends once); \
         'on_curve' counts the original's on-curve points without ('explicit') and with \
-        ('all') the implied points of TrueType quadratics; 'hausdorff' is in font units; \
+        ('all') the implied points of TrueType quadratics; 'hausdorff' is in font units and \
+        'within_tolerance' says whether it is at most 'tolerance' (the refinement may stop \
+        short: at 32 added anchors per piece, or when no anchor it tries can be solved); \
         each anchor's 'a' is its εκ shape parameter (2/3 for κ-curves and piece ends). \
         'out' lists each file written; for .ttf and .glif, 'segments' counts the exported \
         outline, 'exact' says whether it is the draft without approximation and 'max_error' \
@@ -66,7 +69,7 @@ const QUAD_TOLERANCE: f64 = 0.5;
     after_help = "Examples:\n  \
         kappa glyph --font DejaVuSans.ttf --char S --out S.png\n  \
         kappa glyph --font DejaVuSans.ttf --char a --scheme ek-cubic --shape auto --out a.glif --out a.svg\n  \
-        kappa glyph --font DejaVuSans.ttf --char e --tolerance 4 --out e.ttf"
+        kappa glyph --font DejaVuSans.ttf --char e --tolerance 4 --simplify --out e.ttf"
 )]
 pub struct GlyphArgs {
     /// The TrueType/OpenType font file (the first face of a collection).
@@ -86,6 +89,10 @@ pub struct GlyphArgs {
     /// Largest distance of the draft from the original, in font units [default: 0.004 em].
     #[arg(long, value_name = "UNITS", allow_negative_numbers = true)]
     tolerance: Option<f64>,
+    /// Drop every anchor the draft can do without and stay within the tolerance (fewer
+    /// points, several times slower).
+    #[arg(long)]
+    simplify: bool,
     /// Largest distance of the TrueType quadratics from cubic drafts, in font units.
     #[arg(long, value_name = "UNITS", default_value_t = QUAD_TOLERANCE,
           allow_negative_numbers = true)]
@@ -203,6 +210,7 @@ struct GlyphOutput {
     shape: ShapeOutput,
     tolerance: f64,
     hausdorff: f64,
+    within_tolerance: bool,
     anchor_count: usize,
     on_curve: OnCurve,
     segments: Segments,
@@ -236,6 +244,7 @@ pub fn run(args: &GlyphArgs) -> Result<ExitCode> {
     if let Some(t) = args.tolerance {
         options.tolerance = t;
     }
+    options.simplify = args.simplify;
     let drafted = draft(&glyph.path, &options).map_err(Failure::new)?;
     let font_glyph = FontGlyph {
         name: glyph_name(args.ch),
@@ -409,6 +418,7 @@ fn output(
         },
         tolerance: options.tolerance,
         hausdorff: drafted.hausdorff.unwrap_or(0.0),
+        within_tolerance: drafted.within_tolerance(),
         anchor_count: drafted.anchor_count(),
         on_curve: OnCurve {
             explicit: drafted.original_on_curve(),
