@@ -7,9 +7,10 @@ use std::path::{Path, PathBuf};
 
 use kappa::analysis::CurvatureAnalysis;
 use kappa::glyph::{
-    compile_font, draft, fill_mesh, from_glif, hausdorff, is_quadratic, on_curve_points, quantize,
-    stroke_mesh, to_glif, to_quadratic, to_svg, word_scene, AnchorKind, DraftOptions, DraftShape,
-    DraftedGlyph, FontGlyph, FontOutlines, Mesh, PlacedGlyph, AUTO_MAX_SHAPE,
+    compile_font, draft, fill_mesh, from_glif, hausdorff, is_quadratic, on_curve_points,
+    on_curve_split, quantize, stroke_mesh, to_glif, to_quadratic, to_svg, word_figure, word_scene,
+    AnchorKind, DraftOptions, DraftShape, DraftedGlyph, FontGlyph, FontOutlines, Mesh, PlacedGlyph,
+    AUTO_MAX_SHAPE, FIGURE_WORD,
 };
 use kappa::render::golden::{check_golden, Tolerance};
 use kappa::{Error, Scheme};
@@ -615,6 +616,62 @@ fn golden_glyph_sample_kappa() {
 #[test]
 fn golden_glyph_sample_ek_auto() {
     golden("glyph-sample-ek-auto", Scheme::EkCubic, DraftShape::Auto);
+}
+
+/// The gallery figure (`kappa gallery` writes the same as `glyph-sample.png`): "Sample"
+/// original, κ-drafted and auto-shaped εκ-cubic, 1200 × 1000 px.
+#[test]
+fn golden_glyph_sample_figure() {
+    let data = font_data();
+    let font = FontOutlines::parse(&data).unwrap();
+    let kappa = options(Scheme::Kappa, DraftShape::Neutral);
+    let ek = options(Scheme::EkCubic, DraftShape::Auto);
+    let scene = word_figure(&font, FIGURE_WORD, &[kappa, ek], 1200, 1000).unwrap();
+    let image = scene.render().unwrap();
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden/glyph-sample.png");
+    if let Err(e) = check_golden(&path, &image, Tolerance::DEFAULT) {
+        panic!("{e}");
+    }
+    // The SVG of the same scene is a document usvg reads.
+    let svg = scene.to_svg().unwrap();
+    resvg::usvg::Tree::from_str(&svg, &resvg::usvg::Options::default()).unwrap();
+    assert!(matches!(
+        word_figure(&font, "S\u{E000}", &[], 100, 100),
+        Err(Error::MissingGlyph { .. })
+    ));
+}
+
+/// The on-curve points split into stored and implied ones: DejaVu's 'o' stores few and
+/// implies the rest; the counts agree with `on_curve_points`.
+#[test]
+fn glyph_on_curve_split() {
+    let data = font_data();
+    let font = FontOutlines::parse(&data).unwrap();
+    for ch in WORD.chars().chain(['o']) {
+        let path = font.glyph(ch).unwrap().path;
+        let (stored, implied) = on_curve_split(&path);
+        assert_eq!(stored.len(), on_curve_points(&path), "{ch}");
+        assert_eq!(
+            stored.len() + implied.len(),
+            path.segments().count(),
+            "{ch}"
+        );
+        // Every implied point is the midpoint of the off-curve points around it.
+        for p in &implied {
+            let found = kappa::glyph::contours(&path).iter().any(|(segs, _)| {
+                let n = segs.len();
+                (0..n).any(|j| match (segs[j], segs[(j + 1) % n]) {
+                    (kurbo::PathSeg::Quad(a), kurbo::PathSeg::Quad(b)) => {
+                        a.p2 == *p && (a.p1.midpoint(b.p1) - *p).hypot() < 1e-9
+                    }
+                    _ => false,
+                })
+            });
+            assert!(found, "{ch}: {p:?} is not implied");
+        }
+    }
+    let o = font.glyph('o').unwrap().path;
+    assert!(!on_curve_split(&o).1.is_empty());
 }
 
 /// Curvature sign sanity for imported outlines: TrueType outer contours run clockwise (y up),
