@@ -332,6 +332,14 @@ fn glyph_cli_tolerance_and_simplify() {
     let font = FontOutlines::parse(&data).unwrap();
     let d = draft(&font.glyph('a').unwrap().path, &options).unwrap();
     assert_eq!(n(&simple["anchor_count"]), d.anchor_count());
+    // --fair: the library's fair draft, anchor for anchor.
+    let fair = glyph_json(&["--char", "p", "--fair"]);
+    options.simplify = false;
+    options.fair = true;
+    let d = draft(&font.glyph('p').unwrap().path, &options).unwrap();
+    assert_eq!(n(&fair["anchor_count"]), d.anchor_count());
+    assert_eq!(f(&fair["hausdorff"]), d.hausdorff.unwrap());
+    assert_eq!(fair["within_tolerance"], Value::Bool(true));
 }
 
 /// Runs a failing command: exit 2, one `kappa: error:` line, nothing on stdout.

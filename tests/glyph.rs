@@ -159,6 +159,86 @@ fn glyph_draft_sample_within_bound() {
     }
 }
 
+/// Curvature sign changes along the curved parts of an outline (16 samples per segment; a
+/// line, where κ = 0, starts a new count).
+fn inflections(path: &BezPath) -> usize {
+    let mut count = 0;
+    for (segs, _) in kappa::glyph::contours(path) {
+        let mut last = 0.0f64;
+        for seg in &segs {
+            if matches!(seg, kurbo::PathSeg::Line(_)) {
+                last = 0.0;
+                continue;
+            }
+            for j in 0..=16 {
+                let k = CurvatureAnalysis::curvature(seg, j as f64 / 16.0);
+                if k.abs() < 1e-7 {
+                    continue;
+                }
+                if last * k < 0.0 {
+                    count += 1;
+                }
+                last = k;
+            }
+        }
+    }
+    count
+}
+
+/// Fairing: the drafts of the word turn the way the original turns, within the bound; the
+/// plain drafts do not (anchors at flank extrema become |κ| peaks of the other sign).
+#[test]
+fn glyph_fair_sample() {
+    for (scheme, shape) in [
+        (Scheme::Kappa, DraftShape::Neutral),
+        (Scheme::EkCubic, DraftShape::Auto),
+        (Scheme::EkTrig, DraftShape::Auto),
+    ] {
+        let mut fair = options(scheme, shape.clone());
+        fair.fair = true;
+        let (mut plain, mut faired) = (0, 0);
+        for (g, d) in drafted_word(scheme, shape.clone()) {
+            let f = draft(&g.path, &fair).unwrap();
+            let h = f.hausdorff.unwrap();
+            assert!(h <= fair.tolerance && f.within_tolerance(), "{}: {h}", g.ch);
+            let original = inflections(&g.path);
+            assert_eq!(inflections(&f.path), original, "{scheme:?} {}", g.ch);
+            plain += inflections(&d.path) - original;
+            // The drafted curvature at each anchor has the original's sign there.
+            let segs: Vec<kurbo::PathSeg> = g.path.segments().collect();
+            for piece in f.pieces() {
+                let off = usize::from(!piece.closed);
+                let m = piece.anchors.len();
+                for (i, a) in piece.anchors.iter().enumerate() {
+                    if !piece.closed && (m <= 2 || i == 0 || i + 1 == m) {
+                        continue;
+                    }
+                    let seg = piece.spline.segments()[i - off];
+                    let (ko, _) = segs
+                        .iter()
+                        .map(|s| {
+                            let n = s.nearest(a.point, 1e-12);
+                            (CurvatureAnalysis::curvature(s, n.t), n.distance_sq)
+                        })
+                        .min_by(|x, y| x.1.total_cmp(&y.1))
+                        .unwrap();
+                    if ko.abs() > 1e-6 {
+                        assert!(seg.curvature(seg.t_max) * ko > 0.0, "{}: {a:?}", g.ch);
+                        faired += 1;
+                    }
+                }
+            }
+        }
+        assert!(faired > 50, "{faired}");
+        if scheme != Scheme::EkTrig {
+            assert!(
+                plain > 0,
+                "{scheme:?}: the plain drafts have no spurious inflections"
+            );
+        }
+    }
+}
+
 /// The simplification keeps every glyph of the word within the bound with no more anchors,
 /// and fewer in all.
 #[test]

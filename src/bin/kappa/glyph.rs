@@ -36,7 +36,9 @@ const QUAD_TOLERANCE: f64 = 0.5;
         files.\n\n\
         Coordinates are font units with y up, as the font stores them. The draft is refined \
         until every piece is within --tolerance of the original (two-sided Hausdorff \
-        distance); --simplify then drops the anchors it can do without.\n\n\
+        distance). --fair then mends the anchors where the draft turns the other way than \
+        the original (a κ-curve makes every point a curvature peak, so a point on a flat \
+        flank gets one by wiggling), and --simplify drops the anchors it can do without.\n\n\
         Output files, by extension (--out may be given several times):\n  \
         .svg, .png  a picture: the original filled in grey, the draft in black with its \
         curvature comb and anchors in red (--size pixels square)\n  \
@@ -69,7 +71,7 @@ const QUAD_TOLERANCE: f64 = 0.5;
     after_help = "Examples:\n  \
         kappa glyph --font DejaVuSans.ttf --char S --out S.png\n  \
         kappa glyph --font DejaVuSans.ttf --char a --scheme ek-cubic --shape auto --out a.glif --out a.svg\n  \
-        kappa glyph --font DejaVuSans.ttf --char e --tolerance 4 --simplify --out e.ttf"
+        kappa glyph --font DejaVuSans.ttf --char e --tolerance 4 --fair --simplify --out e.ttf"
 )]
 pub struct GlyphArgs {
     /// The TrueType/OpenType font file (the first face of a collection).
@@ -89,6 +91,10 @@ pub struct GlyphArgs {
     /// Largest distance of the draft from the original, in font units [default: 0.004 em].
     #[arg(long, value_name = "UNITS", allow_negative_numbers = true)]
     tolerance: Option<f64>,
+    /// Move, drop or split the anchors where the draft turns the other way than the
+    /// original (no spurious inflections; about twice as slow).
+    #[arg(long)]
+    fair: bool,
     /// Drop every anchor the draft can do without and stay within the tolerance (fewer
     /// points, several times slower).
     #[arg(long)]
@@ -244,6 +250,7 @@ pub fn run(args: &GlyphArgs) -> Result<ExitCode> {
     if let Some(t) = args.tolerance {
         options.tolerance = t;
     }
+    options.fair = args.fair;
     options.simplify = args.simplify;
     let drafted = draft(&glyph.path, &options).map_err(Failure::new)?;
     let font_glyph = FontGlyph {
