@@ -1,6 +1,7 @@
 //! Glyph drafting benchmarks: draft and export all 52 ASCII letters of the vendored DejaVu
 //! Sans (import excluded), as κ-curves (export: TrueType quadratics, exact) and as auto-shaped
-//! εκ-cubic curves (export: quadratics within 0.5 font units); and the compiled test font.
+//! εκ-cubic curves (export: quadratics within 0.5 font units); κ-curves with the fairing and
+//! with the simplification pass; and the compiled test font.
 //!
 //! Run with `cargo bench --all-features --bench glyph`.
 
@@ -46,11 +47,33 @@ fn glyphs(c: &mut Criterion) {
     let letters = letters();
     let mut g = c.benchmark_group("glyph_52_letters");
     g.sample_size(10);
-    for (label, scheme, shape) in [
-        ("kappa", Scheme::Kappa, DraftShape::Neutral),
-        ("ek_cubic_auto", Scheme::EkCubic, DraftShape::Auto),
+    for (label, scheme, shape, fair, simplify) in [
+        ("kappa", Scheme::Kappa, DraftShape::Neutral, false, false),
+        (
+            "ek_cubic_auto",
+            Scheme::EkCubic,
+            DraftShape::Auto,
+            false,
+            false,
+        ),
+        (
+            "kappa_fair",
+            Scheme::Kappa,
+            DraftShape::Neutral,
+            true,
+            false,
+        ),
+        (
+            "kappa_simplify",
+            Scheme::Kappa,
+            DraftShape::Neutral,
+            false,
+            true,
+        ),
     ] {
-        let options = DraftOptions::for_units_per_em(2048.0).with_scheme(scheme, shape);
+        let mut options = DraftOptions::for_units_per_em(2048.0).with_scheme(scheme, shape);
+        options.fair = fair;
+        options.simplify = simplify;
         g.bench_function(format!("draft_export_{label}"), |b| {
             b.iter(|| black_box(draft_export(black_box(&letters), &options)))
         });

@@ -1,60 +1,5 @@
 //! Drafting: a glyph outline rebuilt as κ- or εκ-curves through the points a designer would
-//! click.
-//!
-//! # Method
-//!
-//! 1. **Pieces.** Each contour is cut at its *corners* — joints whose tangent turns by more
-//!    than [`DraftOptions::corner_angle`] (measured with [`crate::analysis::continuity`]) —
-//!    and at both ends of every straight segment, which stays a straight line. The cuts
-//!    split the contour into open pieces whose end points are the corners, so corners stay
-//!    sharp; a contour without cuts (the counter of an `o`) is one closed piece.
-//! 2. **Anchors.** On each curved piece the designer's points are, in this order of
-//!    preference: the piece ends; the on-curve *extrema* (tangent horizontal or vertical,
-//!    from kurbo's `ParamCurveExtrema` and at the joints); and the *curvature peaks* — local
-//!    maxima of the segments' largest |κ| ([`CurvatureAnalysis::max_curvature`]) with a
-//!    prominence of at least [`PEAK_PROMINENCE`] over the lowest |κ| on the way to a higher
-//!    peak (or the piece end) on either side. A candidate closer than
-//!    [`DraftOptions::min_spacing`] to one already taken is dropped.
-//! 3. **Refinement.** The piece is solved through its anchors and measured: for each span
-//!    between consecutive anchors, the original sample furthest from the drafted curve. The
-//!    worst sample of every span further than [`DraftOptions::tolerance`] becomes a new
-//!    anchor — all at once, except that of two neighbouring spans only the worse one gets
-//!    one (an anchor also pulls the curve next to it) — and the piece is solved again, at
-//!    most [`DraftOptions::max_refinements`] anchors per piece. Should the new anchor set
-//!    not be solvable, the round tries only the worst sample, then other places in each
-//!    straying span (its middle and quarters); if none of these solves either, the
-//!    refinement stops there and [`Piece::within_tolerance`] says whether the piece is
-//!    within the tolerance anyway. Most samples are settled without a nearest-point search:
-//!    a point of the draft near the last nearest point, found by two Newton steps, is
-//!    within the tolerance already.
-//! 4. **Fairing** ([`DraftOptions::fair`], off by default): a κ-curve makes every point a
-//!    peak of |κ|, so an anchor at a curvature *minimum* of the original — the flank of a
-//!    bowl, where designers put their extrema — gets its peak by turning the other way, with
-//!    an inflection on either side, within the tolerance but visible in the comb (the κ
-//!    drafts of the 52 letters of DejaVu Sans have 77 such inflections, the εκ-cubic auto
-//!    ones 68, the originals' curved pieces none). For each such anchor the piece is solved
-//!    with it moved halfway to either neighbour, without it, or with two anchors halfway to
-//!    its neighbours instead; the first that stays within the tolerance with fewer of them
-//!    is kept. It leaves 2 of the 77 inflections, at about twice the drafting time.
-//! 5. **Simplification** ([`DraftOptions::simplify`], off by default): each anchor that is
-//!    not a corner, in order along the piece, is dropped if the piece solved without it
-//!    stays within the tolerance (and, when fairing, does not turn the wrong way at more
-//!    anchors). It saves about 5 % of the anchors of DejaVu Sans's letters, up to 15 % on
-//!    some glyphs, at two to five times the drafting time.
-//! 6. **Auto shape** ([`DraftShape::Auto`], εκ schemes): the peak |κ| of an εκ segment at
-//!    its point grows monotonically with the shape parameter `a` (seed 000 §3), so each
-//!    `a_i` is chosen so that the drafted peak at anchor `i` matches the original's |κ|
-//!    there: one solve at the lowest `a` (at the scheme's neutral `a` should that system
-//!    not be solvable), one at `a + 0.1` for the points that fall short, then up to
-//!    [`AUTO_SECANT_STEPS`] per-point secant steps on `ln |κ|` against `a`, each a warm
-//!    [`Solver::resolve_shapes`]. Points whose κ-curve peak already exceeds the original
-//!    keep the lowest `a`; `a` stays in `[2/3, 0.98]` (εκ-cubic) or `[0.62, 0.98]`
-//!    (εκ-trig, where lower `a` can turn the peak into a minimum).
-//!
-//! The reported **Hausdorff distance** is taken piece by piece, both ways, on
-//! [`DraftOptions::samples`] samples per segment with exact nearest points: the original
-//! piece against its own drafted piece, which bounds the Hausdorff distance of the whole
-//! outlines from above (up to the sampling).
+//! click (the method is documented on [`draft`]).
 
 use core::cell::Cell;
 
@@ -96,7 +41,7 @@ pub enum DraftShape {
     Neutral,
     /// One `a` for every anchor.
     Global(f64),
-    /// Per anchor, matching the original's curvature peak (see the module docs).
+    /// Per anchor, matching the original's curvature peak (see [`draft`], step 6).
     Auto,
 }
 
@@ -117,11 +62,11 @@ pub struct DraftOptions {
     pub samples: usize,
     /// At most this many anchors are added per piece by the refinement.
     pub max_refinements: usize,
-    /// Mend the anchors where the draft turns the other way than the original (module docs,
-    /// step 4): no spurious inflections, about twice the drafting time.
+    /// Mend the anchors where the draft turns the other way than the original ([`draft`],
+    /// step 4): no spurious inflections, two to three times the drafting time.
     pub fair: bool,
-    /// Drop the anchors the piece does not need to stay within the tolerance (module docs,
-    /// step 5): fewer points, two to five times the drafting time.
+    /// Drop the anchors the piece does not need to stay within the tolerance ([`draft`],
+    /// step 5): fewer points, about four times the drafting time.
     pub simplify: bool,
 }
 
@@ -300,7 +245,63 @@ impl DraftedGlyph {
     }
 }
 
-/// Drafts a glyph outline (see the [module docs](self)).
+/// Drafts a glyph outline: anchors where a designer would click, a κ/εκ curve through them,
+/// refined until within the tolerance.
+///
+/// # Method
+///
+/// 1. **Pieces.** Each contour is cut at its *corners* — joints whose tangent turns by more
+///    than [`DraftOptions::corner_angle`] (measured with [`crate::analysis::continuity`]) —
+///    and at both ends of every straight segment, which stays a straight line. The cuts
+///    split the contour into open pieces whose end points are the corners, so corners stay
+///    sharp; a contour without cuts (the counter of an `o`) is one closed piece.
+/// 2. **Anchors.** On each curved piece the designer's points are, in this order of
+///    preference: the piece ends; the on-curve *extrema* (tangent horizontal or vertical,
+///    from kurbo's `ParamCurveExtrema` and at the joints); and the *curvature peaks* — local
+///    maxima of the segments' largest |κ| ([`CurvatureAnalysis::max_curvature`]) with a
+///    prominence of at least [`PEAK_PROMINENCE`] over the lowest |κ| on the way to a higher
+///    peak (or the piece end) on either side. A candidate closer than
+///    [`DraftOptions::min_spacing`] to one already taken is dropped.
+/// 3. **Refinement.** The piece is solved through its anchors and measured: for each span
+///    between consecutive anchors, the original sample furthest from the drafted curve. The
+///    worst sample of every span further than [`DraftOptions::tolerance`] becomes a new
+///    anchor — all at once, except that of two neighbouring spans only the worse one gets
+///    one (an anchor also pulls the curve next to it) — and the piece is solved again, at
+///    most [`DraftOptions::max_refinements`] anchors per piece. Should the new anchor set
+///    not be solvable, the round tries only the worst sample, then other places in each
+///    straying span (its middle and quarters); if none of these solves either, the
+///    refinement stops there and [`Piece::within_tolerance`] says whether the piece is
+///    within the tolerance anyway. Most samples are settled without a nearest-point search:
+///    a point of the draft near the last nearest point, found by two Newton steps, is
+///    within the tolerance already.
+/// 4. **Fairing** ([`DraftOptions::fair`], off by default): a κ-curve makes every point a
+///    peak of |κ|, so an anchor at a curvature *minimum* of the original — the flank of a
+///    bowl, where designers put their extrema — gets its peak by turning the other way, with
+///    an inflection on either side, within the tolerance but visible in the comb (the κ
+///    drafts of the 52 letters of DejaVu Sans have 77 such inflections, the εκ-cubic auto
+///    ones 68, the originals' curved pieces none). For each such anchor the piece is solved
+///    with it moved halfway to either neighbour, without it, or with two anchors halfway to
+///    its neighbours instead; the first that stays within the tolerance with fewer of them
+///    is kept. It leaves 2 of the 77 inflections, at two to three times the drafting time.
+/// 5. **Simplification** ([`DraftOptions::simplify`], off by default): each anchor that is
+///    not a corner, in order along the piece, is dropped if the piece solved without it
+///    stays within the tolerance (and, when fairing, does not turn the wrong way at more
+///    anchors). It saves about 5 % of the anchors of DejaVu Sans's letters, up to 15 % on
+///    some glyphs, at about four times the drafting time.
+/// 6. **Auto shape** ([`DraftShape::Auto`], εκ schemes): the peak |κ| of an εκ segment at
+///    its point grows monotonically with the shape parameter `a` (seed 000 §3), so each
+///    `a_i` is chosen so that the drafted peak at anchor `i` matches the original's |κ|
+///    there: one solve at the lowest `a` (at the scheme's neutral `a` should that system
+///    not be solvable), one at `a + 0.1` for the points that fall short, then up to
+///    [`AUTO_SECANT_STEPS`] per-point secant steps on `ln |κ|` against `a`, each a warm
+///    [`Solver::resolve_shapes`]. Points whose κ-curve peak already exceeds the original
+///    keep the lowest `a`; `a` stays in `[2/3, 0.98]` (εκ-cubic) or `[0.62, 0.98]`
+///    (εκ-trig, where lower `a` can turn the peak into a minimum).
+///
+/// The reported **Hausdorff distance** is taken piece by piece, both ways, on
+/// [`DraftOptions::samples`] samples per segment with exact nearest points: the original
+/// piece against its own drafted piece, which bounds the Hausdorff distance of the whole
+/// outlines from above (up to the sampling).
 ///
 /// # Errors
 ///
@@ -794,7 +795,7 @@ struct Cand {
 }
 
 impl Drafter<'_> {
-    /// Drafts one piece (module docs, steps 2 and 3).
+    /// Drafts one piece ([`draft`], steps 2 and 3).
     fn piece(&mut self, segs: &[PathSeg], closed: bool) -> Result<Piece, Error> {
         let opts = self.options;
         let k = opts.samples.clamp(2, 256);
@@ -830,7 +831,7 @@ impl Drafter<'_> {
         Ok(finish(&anchors, solved, closed, hausdorff, opts.tolerance))
     }
 
-    /// The fairing pass (module docs, step 4): while an anchor has a drafted curvature of
+    /// The fairing pass ([`draft`], step 4): while an anchor has a drafted curvature of
     /// the other sign than the original's there, the piece is solved in turn with it moved
     /// halfway to its previous or next neighbour, without it, and with two anchors halfway to
     /// its neighbours instead; the first that stays within the tolerance with fewer such
@@ -900,7 +901,7 @@ impl Drafter<'_> {
         (anchors, solved)
     }
 
-    /// The simplification pass (module docs, step 5): each anchor that is not a corner, in
+    /// The simplification pass ([`draft`], step 5): each anchor that is not a corner, in
     /// order along the piece, is dropped if the piece solved without it stays within the
     /// tolerance (two-sided, as reported).
     fn simplify(
@@ -1233,7 +1234,7 @@ impl Drafter<'_> {
         })
     }
 
-    /// The auto shape (module docs, step 6).
+    /// The auto shape ([`draft`], step 6).
     fn auto_shape(
         &mut self,
         points: &[Point],

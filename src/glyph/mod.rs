@@ -143,9 +143,10 @@ pub(crate) fn on_curve_points_of(segs: &[PathSeg], closed: bool) -> usize {
     joints - implied + if closed { 0 } else { 2 }
 }
 
-/// The on-curve points of an outline: those a designer placed (stored in a `glyf` table),
-/// and the TrueType *implied* ones (see [`on_curve_points_of`]). Open contours list both
-/// ends.
+/// The on-curve points of an outline: those a designer placed, and the TrueType *implied*
+/// ones — joints of two quadratics exactly midway between their off-curve points, by the rule
+/// of [`on_curve_points`] (a font may also store such a point; the outline cannot tell).
+/// Open contours list both ends with the placed ones.
 pub fn on_curve_split(path: &BezPath) -> (Vec<Point>, Vec<Point>) {
     let (mut placed, mut implied) = (Vec::new(), Vec::new());
     for (segs, closed) in contours(path) {

@@ -136,7 +136,8 @@ mod figure {
     const ORIGINAL_WIDTH: f64 = 1.0;
     /// Comb teeth reach this fraction of the em at the largest (capped) |κ| of the drafts.
     const FIGURE_COMB_FRACTION: f64 = 0.12;
-    /// The original's on-curve points: those stored, filled; the implied ones, hollow.
+    /// The original's on-curve points: filled, and hollow where implied (see
+    /// [`on_curve_split`]).
     const STORED: PointStyle = PointStyle::new(2.5, Color::BLACK);
     const IMPLIED: PointStyle = PointStyle::new(2.5, Color::WHITE).with_outline(Color::BLACK);
     /// The anchors of the drafts.
@@ -167,11 +168,11 @@ mod figure {
 
     /// The gallery figure of `word` in `font`: the original outlines on top, filled in light
     /// grey with their curvature combs (TrueType quadratics: the comb jumps at every joint)
-    /// and their on-curve points (stored ones filled, implied ones hollow); below, one row per
-    /// entry of `drafts`, each drafted with those options and drawn as [`super::word_scene`]
-    /// draws (draft in black, comb, anchors in red). One comb scale for every row, so that
-    /// their curvature can be compared; rows [`ROW_PITCH`] em apart, a `width × height`
-    /// picture of all of them.
+    /// and their on-curve points (filled; implied ones, see [`on_curve_split`], hollow);
+    /// below, one row per entry of `drafts`, each drafted with those options and drawn as
+    /// [`super::word_scene`] draws (draft in black, comb, anchors in red). One comb scale for
+    /// every row, so that their curvature can be compared; baselines 1.3 em apart; a
+    /// `width × height` picture of all of them.
     ///
     /// # Errors
     ///

@@ -1,19 +1,5 @@
 //! Fill and stroke meshes of outlines through lyon, for GPU renderers.
 //!
-//! # Layout
-//!
-//! A [`Mesh`] is an indexed triangle list ready to upload as two buffers:
-//!
-//! - `vertices`: `[f32; 2]` positions in the path's units (font units, y up), tightly packed
-//!   (stride 8 bytes, `vec2<f32>` at offset 0);
-//! - `indices`: `u32`, three per triangle; every triangle is **counter-clockwise in y-up
-//!   coordinates** (positive signed area), so back-face culling with CCW front faces keeps
-//!   all of them.
-//!
-//! Fills use the non-zero rule (TrueType's); the fill triangles do not overlap, so their union
-//! is the filled outline. Strokes use round joins and caps; stroke triangles may overlap, so
-//! draw them with a union (the same colour, no blending of overlaps).
-//!
 //! The core stays `f64`; the conversion to lyon's `f32` happens only here: each subpath is a
 //! `begin` … `end(closed)` pair.
 
@@ -27,7 +13,17 @@ use lyon::tessellation::{
 
 use crate::Error;
 
-/// An indexed triangle mesh (see the [module docs](self) for the layout).
+/// An indexed triangle list ready to upload as two buffers:
+///
+/// - `vertices`: `[f32; 2]` positions in the path's units (font units, y up), tightly packed
+///   (stride 8 bytes, `vec2<f32>` at offset 0);
+/// - `indices`: `u32`, three per triangle; every triangle is **counter-clockwise in y-up
+///   coordinates** (positive signed area), so back-face culling with CCW front faces keeps
+///   all of them.
+///
+/// Fills use the non-zero rule (TrueType's); the fill triangles do not overlap, so their union
+/// is the filled outline. Strokes use round joins and caps; stroke triangles may overlap, so
+/// draw them with a union (the same colour, no blending of overlaps).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Mesh {
     /// Vertex positions.

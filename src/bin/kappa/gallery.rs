@@ -57,7 +57,7 @@ const GLYPH_FONT: &[u8] = include_bytes!("../../../tests/fonts/DejaVuSans.ttf");
         bsplines.png        uniform cubic B-splines of the B-spline paper (T4, and the trefoil \
         E3 in an orthographic view) with their maximum curvature marked\n  \
         glyph-sample.png    \"Sample\" in DejaVu Sans: the original outlines with their \
-        curvature combs and on-curve points (stored filled, implied hollow), then drafted as \
+        curvature combs and on-curve points (implied ones hollow), then drafted as \
         κ-curves and as auto-shaped εκ-cubic curves with combs and anchors\n\
         Prints the files written, one per line.",
     after_help = "Examples:\n  kappa gallery\n  kappa gallery --out docs/gallery"

@@ -92,11 +92,11 @@ pub struct GlyphArgs {
     #[arg(long, value_name = "UNITS", allow_negative_numbers = true)]
     tolerance: Option<f64>,
     /// Move, drop or split the anchors where the draft turns the other way than the
-    /// original (no spurious inflections; about twice as slow).
+    /// original (no spurious inflections; two to three times as slow).
     #[arg(long)]
     fair: bool,
     /// Drop every anchor the draft can do without and stay within the tolerance (fewer
-    /// points, several times slower).
+    /// points, about four times as slow).
     #[arg(long)]
     simplify: bool,
     /// Largest distance of the TrueType quadratics from cubic drafts, in font units.
