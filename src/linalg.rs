@@ -97,6 +97,68 @@ impl BandLu {
 
     /// Solve `A x = b` in place with the factors from [`BandLu::factor`].
     pub(crate) fn solve(&self, b: &mut [f64]) {
+        // The bandwidths of the κ/εκ solver's systems (2D and 3D) get unrolled kernels.
+        match (self.kl, self.ku) {
+            (5, 5) => self.solve_fixed::<5, 10>(b),
+            (7, 7) => self.solve_fixed::<7, 14>(b),
+            _ => self.solve_general(b),
+        }
+    }
+
+    /// [`BandLu::solve`] with the bandwidths known at compile time: `KL` below the diagonal
+    /// and `U = kl + ku` above it in the factor `U`.
+    fn solve_fixed<const KL: usize, const U: usize>(&self, b: &mut [f64]) {
+        let (n, w) = (self.n, self.w);
+        debug_assert!(self.kl == KL && self.kl + self.ku == U);
+        debug_assert_eq!(b.len(), n);
+        for k in 0..n {
+            let p = self.piv[k];
+            if p != k {
+                b.swap(k, p);
+            }
+            let bk = b[k];
+            if k + KL < n {
+                let col: &[f64; KL] = self.l[k * KL..(k + 1) * KL].try_into().unwrap();
+                let below: &mut [f64; KL] = (&mut b[k + 1..k + 1 + KL]).try_into().unwrap();
+                for i in 0..KL {
+                    below[i] -= col[i] * bk;
+                }
+            } else {
+                let m = n - 1 - k;
+                for (bi, li) in b[k + 1..].iter_mut().zip(&self.l[k * KL..k * KL + m]) {
+                    *bi -= li * bk;
+                }
+            }
+        }
+        for k in (0..n).rev() {
+            let rk = k * w + KL;
+            let s = if k + U < n {
+                let row: &[f64; U] = self.a[rk + 1..rk + 1 + U].try_into().unwrap();
+                let x: &[f64; U] = b[k + 1..k + 1 + U].try_into().unwrap();
+                // Two partial sums halve the dependency chain.
+                let (mut s0, mut s1) = (0.0, 0.0);
+                for i in (0..U - 1).step_by(2) {
+                    s0 += row[i] * x[i];
+                    s1 += row[i + 1] * x[i + 1];
+                }
+                if U % 2 == 1 {
+                    s0 += row[U - 1] * x[U - 1];
+                }
+                s0 + s1
+            } else {
+                let len = n - 1 - k;
+                self.a[rk + 1..rk + 1 + len]
+                    .iter()
+                    .zip(&b[k + 1..])
+                    .map(|(a, x)| a * x)
+                    .sum()
+            };
+            b[k] = (b[k] - s) / self.a[rk];
+        }
+    }
+
+    /// [`BandLu::solve`] for any bandwidths.
+    fn solve_general(&self, b: &mut [f64]) {
         let (n, kl, w) = (self.n, self.kl, self.w);
         for k in 0..n {
             let p = self.piv[k];
@@ -118,6 +180,50 @@ impl BandLu {
             let row = &self.a[rk + 1..rk + len];
             let s: f64 = row.iter().zip(&b[k + 1..k + len]).map(|(a, x)| a * x).sum();
             b[k] = (b[k] - s) / self.a[rk];
+        }
+    }
+
+    /// Solve `A X = B` in place for `m` right-hand sides at once, `b` row-major (`n × m`):
+    /// one pass over the factors for all of them.
+    pub(crate) fn solve_many(&self, b: &mut [f64], m: usize) {
+        let (n, kl, w) = (self.n, self.kl, self.w);
+        debug_assert_eq!(b.len(), n * m);
+        for k in 0..n {
+            let p = self.piv[k];
+            if p != k {
+                for r in 0..m {
+                    b.swap(k * m + r, p * m + r);
+                }
+            }
+            let (head, tail) = b.split_at_mut((k + 1) * m);
+            let bk = &head[k * m..];
+            if bk.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            let rows = kl.min(n - 1 - k);
+            let col = &self.l[k * kl..k * kl + rows];
+            for (bi, &li) in tail.chunks_exact_mut(m).zip(col) {
+                for (x, y) in bi.iter_mut().zip(bk) {
+                    *x -= li * y;
+                }
+            }
+        }
+        for k in (0..n).rev() {
+            let rk = k * w + kl;
+            let len = (k + kl + self.ku).min(n - 1) - k + 1;
+            let (head, tail) = b.split_at_mut((k + 1) * m);
+            let bk = &mut head[k * m..];
+            for (&a, bi) in self.a[rk + 1..rk + len].iter().zip(tail.chunks_exact(m)) {
+                if a != 0.0 {
+                    for (x, y) in bk.iter_mut().zip(bi) {
+                        *x -= a * y;
+                    }
+                }
+            }
+            let inv = 1.0 / self.a[rk];
+            for x in bk.iter_mut() {
+                *x *= inv;
+            }
         }
     }
 }
@@ -215,7 +321,7 @@ pub(crate) struct BorderedLu {
     nb: usize,
     /// `A_II`.
     pub(crate) band: BandLu,
-    /// `A_IB`, column-major (`nb` columns of length `ni`); replaced by `A_II⁻¹ A_IB`.
+    /// `A_IB`, row-major (`ni` rows of length `nb`); replaced by `A_II⁻¹ A_IB`.
     ib: Vec<f64>,
     /// `A_BI` as triplets `(border row, interior column, value)`.
     bi: Vec<(usize, usize, f64)>,
@@ -241,7 +347,7 @@ impl BorderedLu {
         let ni = self.ni;
         match (i < ni, j < ni) {
             (true, true) => self.band.add(i, j, v),
-            (true, false) => self.ib[(j - ni) * ni + i] += v,
+            (true, false) => self.ib[i * self.nb + (j - ni)] += v,
             (false, true) => self.bi.push((i - ni, j, v)),
             (false, false) => self.s.add(i - ni, j - ni, v),
         }
@@ -252,15 +358,14 @@ impl BorderedLu {
         if self.ni > 0 && !self.band.factor() {
             return false;
         }
-        let ni = self.ni;
-        for col in 0..self.nb {
-            let y = &mut self.ib[col * ni..(col + 1) * ni];
-            // A border unknown that no interior row references has A_II⁻¹ · 0 = 0.
-            if ni > 0 && y.iter().any(|&v| v != 0.0) {
-                self.band.solve(y);
-            }
-            for &(r, c, v) in &self.bi {
-                self.s.add(r, col, -v * y[c]);
+        let nb = self.nb;
+        if self.ni > 0 {
+            // All border columns in one pass over the band factors.
+            self.band.solve_many(&mut self.ib, nb);
+        }
+        for &(r, c, v) in &self.bi {
+            for col in 0..nb {
+                self.s.add(r, col, -v * self.ib[c * nb + col]);
             }
         }
         self.s.factor()
@@ -277,12 +382,9 @@ impl BorderedLu {
             xb[r] -= v * xi[c];
         }
         self.s.solve(xb);
-        for (col, &b) in xb.iter().enumerate() {
-            if b != 0.0 && ni > 0 {
-                let y = &self.ib[col * ni..(col + 1) * ni];
-                for (x, y) in xi.iter_mut().zip(y) {
-                    *x -= y * b;
-                }
+        if self.nb > 0 {
+            for (x, y) in xi.iter_mut().zip(self.ib.chunks_exact(self.nb)) {
+                *x -= y.iter().zip(xb.iter()).map(|(y, b)| y * b).sum::<f64>();
             }
         }
     }
@@ -575,6 +677,62 @@ mod tests {
         let rhs: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
         assert!(band.factor() && dense.factor());
         assert_same_solution(|x| band.solve(x), &dense, &rhs);
+    }
+
+    #[test]
+    fn fixed_bandwidth_kernels_match_general_solve() {
+        for (n, kl, ku) in [(40, 5, 5), (9, 5, 5), (3, 5, 5), (50, 7, 7), (12, 7, 7)] {
+            let mut seed = 3 + n as u64;
+            let mut band = BandLu::default();
+            band.reset(n, kl, ku);
+            for i in 0..n {
+                for j in i.saturating_sub(kl)..=(i + ku).min(n - 1) {
+                    band.add(i, j, lcg(&mut seed));
+                }
+            }
+            assert!(band.factor());
+            let rhs: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
+            let (mut fast, mut general) = (rhs.clone(), rhs);
+            band.solve(&mut fast);
+            band.solve_general(&mut general);
+            for (x, y) in fast.iter().zip(&general) {
+                assert!(
+                    (x - y).abs() <= 1e-12 * (1.0 + y.abs()),
+                    "n = {n}: {x} vs {y}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn band_solve_many_matches_single_solves() {
+        let mut seed = 5;
+        let (n, kl, ku, m) = (17, 3, 2, 4);
+        let mut band = BandLu::default();
+        band.reset(n, kl, ku);
+        for i in 0..n {
+            for j in i.saturating_sub(kl)..=(i + ku).min(n - 1) {
+                band.add(i, j, lcg(&mut seed));
+            }
+        }
+        assert!(band.factor());
+        // Row-major right-hand sides, one of them zero (skipped by the forward pass).
+        let mut many: Vec<f64> = (0..n * m)
+            .map(|i| if i % m == 2 { 0.0 } else { lcg(&mut seed) })
+            .collect();
+        let columns: Vec<Vec<f64>> = (0..m)
+            .map(|r| {
+                let mut x: Vec<f64> = (0..n).map(|i| many[i * m + r]).collect();
+                band.solve(&mut x);
+                x
+            })
+            .collect();
+        band.solve_many(&mut many, m);
+        for (r, x) in columns.iter().enumerate() {
+            for i in 0..n {
+                assert!((many[i * m + r] - x[i]).abs() <= 1e-12 * (1.0 + x[i].abs()));
+            }
+        }
     }
 
     #[test]

@@ -134,6 +134,21 @@ fn cross3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     ]
 }
 
+/// The cyclic index `i mod n` for `-n ≤ i < 2n` (the stencils reach at most two blocks
+/// away, and closed curves have at least three), without a division.
+#[inline(always)]
+fn wrap(i: isize, n: usize) -> usize {
+    let n = n as isize;
+    debug_assert!(i >= -n && i < 2 * n);
+    (if i < 0 {
+        i + n
+    } else if i >= n {
+        i - n
+    } else {
+        i
+    }) as usize
+}
+
 /// The data of one solve: targets, shapes and topology, in normalized coordinates.
 #[derive(Clone, Debug)]
 pub(crate) struct Problem<const D: usize> {
@@ -162,7 +177,7 @@ impl<const D: usize> State<D> {
     pub(crate) fn control(&self, prob: &Problem<D>, i: isize) -> [f64; D] {
         let n = self.t.len();
         if prob.closed {
-            self.c[i.rem_euclid(n as isize) as usize]
+            self.c[wrap(i, n)]
         } else if i < 0 {
             prob.ghost[0]
         } else if i as usize >= n {
@@ -178,7 +193,7 @@ impl<const D: usize> State<D> {
     pub(crate) fn ratio(&self, prob: &Problem<D>, i: isize) -> f64 {
         let n = self.t.len();
         if prob.closed {
-            self.lam[i.rem_euclid(n as isize) as usize]
+            self.lam[wrap(i, n)]
         } else if i < 0 {
             0.0
         } else if i as usize >= n {
@@ -217,7 +232,7 @@ struct JointTerms<const D: usize> {
 }
 
 impl<const D: usize> JointTerms<D> {
-    #[inline]
+    #[inline(always)]
     fn new(prob: &Problem<D>, j: usize, l: &Local<D>) -> Self {
         let n = prob.basis.len();
         let k0 = prob.basis[j].end_coefficient();
@@ -746,7 +761,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     }
 
     /// Gather the variables of block `j` from `st`.
-    #[inline]
+    #[inline(always)]
     fn local(prob: &Problem<D>, st: &State<D>, j: usize) -> Local<D> {
         let c = |i: isize| st.control(prob, i);
         let lam = |i: isize| st.ratio(prob, i);
@@ -1200,7 +1215,7 @@ impl Var {
         let block = |off: isize| -> Option<usize> {
             let i = j as isize + off;
             if closed {
-                Some(i.rem_euclid(n as isize) as usize)
+                Some(wrap(i, n))
             } else if i < 0 || i as usize >= n {
                 None
             } else {
