@@ -52,6 +52,69 @@ impl BandLu {
 
     /// Factor in place. Returns `false` if a pivot is zero or not finite.
     pub(crate) fn factor(&mut self) -> bool {
+        match (self.kl, self.ku) {
+            (5, 5) => self.factor_fixed::<5, 10>(),
+            (7, 7) => self.factor_fixed::<7, 14>(),
+            _ => self.factor_general(),
+        }
+    }
+
+    /// [`BandLu::factor`] with the bandwidths known at compile time (`U = kl + ku`, the
+    /// width of `U` above its diagonal).
+    fn factor_fixed<const KL: usize, const U: usize>(&mut self) -> bool {
+        let (n, w) = (self.n, self.w);
+        debug_assert!(self.kl == KL && self.kl + self.ku == U);
+        for k in 0..n {
+            let imax = (k + KL).min(n - 1);
+            let len = U.min(n - 1 - k) + 1;
+            let mut p = k;
+            let mut best = self.a[k * w + KL].abs();
+            for i in k + 1..=imax {
+                let v = self.a[i * w + KL + k - i].abs();
+                if v > best {
+                    best = v;
+                    p = i;
+                }
+            }
+            if !(best > 0.0 && best.is_finite()) {
+                return false;
+            }
+            self.piv[k] = p;
+            let rk = k * w + KL;
+            if p != k {
+                let rp = p * w + KL + k - p;
+                for d in 0..len {
+                    self.a.swap(rk + d, rp + d);
+                }
+            }
+            let inv = 1.0 / self.a[rk];
+            for i in k + 1..=imax {
+                let ri = i * w + KL + k - i;
+                let f = self.a[ri] * inv;
+                self.a[ri] = f;
+                self.l[k * KL + (i - k - 1)] = f;
+                if f == 0.0 {
+                    continue;
+                }
+                let (head, tail) = self.a.split_at_mut(ri);
+                if len == U + 1 {
+                    let pivot_row: &[f64; U] = head[rk + 1..rk + 1 + U].try_into().unwrap();
+                    let row: &mut [f64; U] = (&mut tail[1..1 + U]).try_into().unwrap();
+                    for d in 0..U {
+                        row[d] -= f * pivot_row[d];
+                    }
+                } else {
+                    for (x, y) in tail[1..len].iter_mut().zip(&head[rk + 1..rk + len]) {
+                        *x -= f * y;
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    /// [`BandLu::factor`] for any bandwidths.
+    fn factor_general(&mut self) -> bool {
         let (n, kl, w) = (self.n, self.kl, self.w);
         for k in 0..n {
             let imax = (k + kl).min(n - 1);
@@ -186,6 +249,63 @@ impl BandLu {
     /// Solve `A X = B` in place for `m` right-hand sides at once, `b` row-major (`n × m`):
     /// one pass over the factors for all of them.
     pub(crate) fn solve_many(&self, b: &mut [f64], m: usize) {
+        match (self.kl, self.ku, m) {
+            (5, 5, 6) => self.solve_many_fixed::<5, 10, 6>(b),
+            (7, 7, 8) => self.solve_many_fixed::<7, 14, 8>(b),
+            _ => self.solve_many_general(b, m),
+        }
+    }
+
+    /// [`BandLu::solve_many`] with the bandwidths (as in [`BandLu::solve_fixed`]) and the
+    /// number of right-hand sides `M` known at compile time.
+    fn solve_many_fixed<const KL: usize, const U: usize, const M: usize>(&self, b: &mut [f64]) {
+        let (n, w) = (self.n, self.w);
+        debug_assert!(self.kl == KL && self.kl + self.ku == U);
+        debug_assert_eq!(b.len(), n * M);
+        for k in 0..n {
+            let p = self.piv[k];
+            if p != k {
+                for r in 0..M {
+                    b.swap(k * M + r, p * M + r);
+                }
+            }
+            let (head, tail) = b.split_at_mut((k + 1) * M);
+            let bk: [f64; M] = head[k * M..].try_into().unwrap();
+            if bk.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            let rows = KL.min(n - 1 - k);
+            let col = &self.l[k * KL..k * KL + rows];
+            for (bi, &li) in tail.chunks_exact_mut(M).zip(col) {
+                let bi: &mut [f64; M] = bi.try_into().unwrap();
+                for r in 0..M {
+                    bi[r] -= li * bk[r];
+                }
+            }
+        }
+        for k in (0..n).rev() {
+            let rk = k * w + KL;
+            let len = U.min(n - 1 - k);
+            let (head, tail) = b.split_at_mut((k + 1) * M);
+            let mut acc: [f64; M] = head[k * M..].try_into().unwrap();
+            for (&a, bi) in self.a[rk + 1..rk + 1 + len]
+                .iter()
+                .zip(tail.chunks_exact(M))
+            {
+                let bi: &[f64; M] = bi.try_into().unwrap();
+                for r in 0..M {
+                    acc[r] -= a * bi[r];
+                }
+            }
+            let inv = 1.0 / self.a[rk];
+            for (x, v) in head[k * M..].iter_mut().zip(acc) {
+                *x = v * inv;
+            }
+        }
+    }
+
+    /// [`BandLu::solve_many`] for any bandwidths and number of right-hand sides.
+    fn solve_many_general(&self, b: &mut [f64], m: usize) {
         let (n, kl, w) = (self.n, self.kl, self.w);
         debug_assert_eq!(b.len(), n * m);
         for k in 0..n {
@@ -680,7 +800,7 @@ mod tests {
     }
 
     #[test]
-    fn fixed_bandwidth_kernels_match_general_solve() {
+    fn fixed_bandwidth_kernels_match_general_ones() {
         for (n, kl, ku) in [(40, 5, 5), (9, 5, 5), (3, 5, 5), (50, 7, 7), (12, 7, 7)] {
             let mut seed = 3 + n as u64;
             let mut band = BandLu::default();
@@ -690,7 +810,15 @@ mod tests {
                     band.add(i, j, lcg(&mut seed));
                 }
             }
-            assert!(band.factor());
+            let mut slow = band.clone();
+            assert!(band.factor() && slow.factor_general());
+            assert_eq!(band.piv, slow.piv);
+            for (x, y) in band.a.iter().zip(&slow.a) {
+                assert!(
+                    (x - y).abs() <= 1e-12 * (1.0 + y.abs()),
+                    "n = {n}: {x} vs {y}"
+                );
+            }
             let rhs: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
             let (mut fast, mut general) = (rhs.clone(), rhs);
             band.solve(&mut fast);
@@ -731,6 +859,31 @@ mod tests {
         for (r, x) in columns.iter().enumerate() {
             for i in 0..n {
                 assert!((many[i * m + r] - x[i]).abs() <= 1e-12 * (1.0 + x[i].abs()));
+            }
+        }
+    }
+
+    #[test]
+    fn fixed_multi_solve_kernels_match_general() {
+        for (n, kl, m) in [(30, 5, 6), (4, 5, 6), (25, 7, 8), (6, 7, 8)] {
+            let mut seed = 17 + n as u64;
+            let mut band = BandLu::default();
+            band.reset(n, kl, kl);
+            for i in 0..n {
+                for j in i.saturating_sub(kl)..=(i + kl).min(n - 1) {
+                    band.add(i, j, lcg(&mut seed));
+                }
+            }
+            assert!(band.factor());
+            let rhs: Vec<f64> = (0..n * m).map(|_| lcg(&mut seed)).collect();
+            let (mut fast, mut general) = (rhs.clone(), rhs);
+            band.solve_many(&mut fast, m);
+            band.solve_many_general(&mut general, m);
+            for (x, y) in fast.iter().zip(&general) {
+                assert!(
+                    (x - y).abs() <= 1e-12 * (1.0 + y.abs()),
+                    "n = {n}: {x} vs {y}"
+                );
             }
         }
     }
