@@ -38,6 +38,9 @@ const EPS_GRAM: f64 = 1e-60;
 const ROUNDING_FLOOR: f64 = 64.0 * f64::EPSILON;
 /// Bounds for λ during the line search (it must stay strictly inside (0, 1)).
 const LAMBDA_MIN: f64 = 1e-12;
+/// The largest rounding floor granted to a near-degenerate joint (see
+/// [`Workspace::check_row`]): its relative |κ| mismatch still has to be below this.
+const MAX_FLOOR: f64 = 1e-6;
 /// Iterations of the classic loop used to start Newton from a cold start, one attempt each.
 const CLASSIC_STARTS: [usize; 3] = [3, 1, 12];
 /// Classic iterations that start the first solve of a continuation.
@@ -834,17 +837,30 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
 
     /// The values the convergence test measures for one block: the interpolation residual,
     /// the relative |κ| mismatch `g2` at the joint and the peak residual. The dimensionless
-    /// rows cannot be resolved below the rounding floor ~ε / (local size) (coordinates are
-    /// O(1) after normalization), so they are scaled for the tolerance to apply above that
-    /// floor; interpolation keeps the tolerance as it is.
+    /// rows cannot be resolved below their rounding floor, so they are scaled for the
+    /// tolerance to apply above that floor; interpolation keeps the tolerance as it is.
+    ///
+    /// The floors: coordinates are O(1) after normalization and carry rounding errors ~ε,
+    /// so an edge `u` has relative error ~ε/|u|: the peak row's floor is ε/(local size). The
+    /// G2 row is a ratio of triangle areas `|u × v|/2`, whose relative error is
+    /// ~ε(|u| + |v|)/|u × v|: the same for a right angle, but growing as 1/sin θ at a sharp
+    /// turn or a near-straight joint (capped at [`MAX_FLOOR`]).
     #[inline]
     fn check_row(r: [f64; B], g2: f64, loc: &Local<D>, tol: f64) -> [f64; B] {
         let local = dist(loc.cm, loc.c0) + dist(loc.c0, loc.c1);
+        let thin = |a: [f64; D], b: [f64; D], c: [f64; D]| {
+            let (u, v) = (sub(a, b), sub(c, b));
+            let (nu, nv) = (dot(u, u).sqrt(), dot(v, v).sqrt());
+            let cross2 = dot(u, u) * dot(v, v) - dot(u, v) * dot(u, v);
+            // (|u| + |v|) / |u × v|, without dividing by zero.
+            (nu + nv) / cross2.max(0.0).sqrt().max(f64::MIN_POSITIVE)
+        };
+        let area = thin(loc.cm, loc.c0, loc.c1).max(thin(loc.c0, loc.c1, loc.c2));
         let floor = ROUNDING_FLOOR / local.max(f64::MIN_POSITIVE);
-        let soften = (tol / floor).min(1.0);
+        let g2_floor = floor.max((ROUNDING_FLOOR * area).min(MAX_FLOOR));
         let mut c = r;
-        c[D] = g2 * soften;
-        c[D + 1] *= soften;
+        c[D] = g2 * (tol / g2_floor).min(1.0);
+        c[D + 1] *= (tol / floor).min(1.0);
         c
     }
 
