@@ -325,12 +325,50 @@ impl Linear {
         }
     }
 
+    /// Add the first `rows` rows of a condensed block Jacobian (`jl[row][offset][variable]`,
+    /// variables `0..rows` of each stencil block) at row `row0`, in the columns of `columns`.
     #[inline]
-    fn add(&mut self, i: usize, j: usize, v: f64) {
+    fn add_block<const B: usize>(
+        &mut self,
+        row0: usize,
+        rows: usize,
+        jl: &[[[f64; B]; 4]; B],
+        columns: &Columns,
+    ) {
+        // One dispatch per block, not per entry.
+        #[inline(always)]
+        fn scatter<const B: usize>(
+            row0: usize,
+            rows: usize,
+            jl: &[[[f64; B]; 4]; B],
+            columns: &Columns,
+            mut add: impl FnMut(usize, usize, f64),
+        ) {
+            for (row, entries) in jl.iter().enumerate().take(rows) {
+                for (o, block) in entries.iter().enumerate() {
+                    for (k, &v) in block.iter().enumerate().take(rows) {
+                        if v != 0.0 {
+                            if let Some(c) = columns.at(o, k) {
+                                add(row0 + row, c, v);
+                            }
+                        }
+                    }
+                }
+            }
+        }
         match self.mode {
-            LinearMode::Dense => self.dense.add(i, j, v),
-            LinearMode::Bordered => self.bord.add(i, j, v),
-            LinearMode::Band => self.band.add(i, j, v),
+            LinearMode::Dense => {
+                let m = &mut self.dense;
+                scatter(row0, rows, jl, columns, |i, j, v| m.add(i, j, v));
+            }
+            LinearMode::Bordered => {
+                let m = &mut self.bord;
+                scatter(row0, rows, jl, columns, |i, j, v| m.add(i, j, v));
+            }
+            LinearMode::Band => {
+                let m = &mut self.band;
+                scatter(row0, rows, jl, columns, |i, j, v| m.add(i, j, v));
+            }
         }
     }
 
@@ -905,17 +943,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 self.cond[j] = condense::<D, B>(&mut jl);
                 let columns = Columns::new::<D, B>(prob.closed, n, j, B - 1);
                 self.cols[j] = columns;
-                for (row, entries) in jl.iter().enumerate().take(D + 1) {
-                    for (o, block) in entries.iter().enumerate() {
-                        for (k, &v) in block.iter().enumerate().take(D + 1) {
-                            if v != 0.0 {
-                                if let Some(c) = columns.at(o, k) {
-                                    self.lin.add(j * (B - 1) + row, c, v);
-                                }
-                            }
-                        }
-                    }
-                }
+                self.lin.add_block::<B>(j * (B - 1), D + 1, &jl, &columns);
                 r
             } else {
                 let mut ignore = |_: usize, _: Var, _: f64| {};
