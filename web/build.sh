@@ -1,0 +1,11 @@
+#!/usr/bin/env bash
+# Builds the path-tool engine for wasm32-unknown-unknown and puts it beside the page
+# (web/www/kappa_web.wasm).
+set -euo pipefail
+cd "$(dirname "$0")"
+if ! rustup target list --installed 2>/dev/null | grep -qx wasm32-unknown-unknown; then
+    rustup target add wasm32-unknown-unknown
+fi
+cargo build --release --locked --target wasm32-unknown-unknown
+cp target/wasm32-unknown-unknown/release/kappa_web.wasm www/kappa_web.wasm
+echo "web/www/kappa_web.wasm: $(wc -c < www/kappa_web.wasm) bytes"
