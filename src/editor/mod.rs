@@ -636,9 +636,7 @@ impl Editor {
                     // A solved curve is finite, so fitting it cannot fail.
                     s.fit(&options).map(|f| f.path).unwrap_or_default()
                 };
-                for el in path.elements() {
-                    out.push(*el);
-                }
+                append(&mut out, path);
             }
         }
         out
@@ -649,9 +647,7 @@ impl Editor {
         let mut out = BezPath::new();
         for piece in &self.pieces {
             if let Some(s) = &piece.spline {
-                for el in s.curvature_comb(scale, samples).elements() {
-                    out.push(*el);
-                }
+                append(&mut out, s.curvature_comb(scale, samples));
             }
         }
         out
@@ -702,6 +698,15 @@ impl Editor {
         }
         out.push_str("</svg>\n");
         out
+    }
+}
+
+/// Appends `path` to `out`, taking it whole when `out` is empty (one piece: no copy).
+fn append(out: &mut BezPath, path: BezPath) {
+    if out.elements().is_empty() {
+        *out = path;
+    } else {
+        out.extend(path.elements().iter().copied());
     }
 }
 

@@ -266,6 +266,29 @@ test("clicks, a drag and a shape edit keep the curve through every point", async
     return end[0] * start[1] - end[1] * start[0];
   });
   assert.ok(Math.abs(tangents) > 0.05, `no tangent break at the corner (cross ${tangents})`);
+  // Shift+click on the curve between points 4 and 5 inserts a point there (on the old
+  // curve, nearest to the click); the Delete key removes it again.
+  const before = await page.evaluate(() => window.kappa.points());
+  const mid = await page.evaluate(([a, b]) => window.kappa.hit((a[0] + b[0]) / 2, (a[1] + b[1]) / 2),
+    [CLICKS[4], CLICKS[5]]);
+  const at = [Math.round(mid.x), Math.round(mid.y)];
+  const onCurve = await page.evaluate(([x, y]) => window.kappa.hit(x, y), at);
+  await page.keyboard.down("Shift");
+  await page.mouse.click(o.x + at[0], o.y + at[1]);
+  await page.keyboard.up("Shift");
+  pts = await page.evaluate(() => window.kappa.points());
+  assert.equal(pts.length, 7);
+  assert.ok(Math.hypot(pts[5].x - onCurve.x, pts[5].y - onCurve.y) < 1e-9, "inserted off the curve");
+  await checkCurve(DRAWN_TOL["ek-cubic"]);
+  await page.keyboard.press("Delete");
+  assert.deepEqual(await page.evaluate(() => window.kappa.points()), before);
+
+  // The Export SVG button downloads what exportSvg(false) gives.
+  const [download] = await Promise.all([page.waitForEvent("download"), page.click("#export")]);
+  const exported = fs.readFileSync(await download.path(), "utf8");
+  assert.equal(exported, await page.evaluate(() => window.kappa.exportSvg(false)));
+  assert.ok(exported.startsWith("<svg") && exported.includes("<path d=\"M"));
+
   // Select point 3 again for the picture.
   await page.mouse.click(o.x + CLICKS[3][0], o.y + CLICKS[3][1]);
   assert.deepEqual(page.problems, []);
