@@ -695,6 +695,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             };
             return self.solve(points, closed, self.scheme, &shapes);
         }
+        self.ws.refresh_jacobian(&self.prob, self.options.tolerance);
         let old_frame = self.frame;
         let old_points = core::mem::take(&mut self.points);
         let shapes = self.shapes();
@@ -871,6 +872,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         let settings = Settings {
             tolerance: self.options.tolerance,
             max_iterations: self.options.max_iterations,
+            newton_chords: true,
         };
         let outcome = if self.warm {
             // A warm start that does not converge quickly is far from the new solution: a
