@@ -10,10 +10,16 @@
 //! **Path encoding** ([`encode_path`]): each element is a verb code followed by its points,
 //! `MOVE_TO x y`, `LINE_TO x y`, `QUAD_TO x1 y1 x y`, `CURVE_TO x1 y1 x2 y2 x y`, `CLOSE`.
 
+#![deny(missing_docs)]
+// `#[no_mangle]` counts as unsafe code; it is allowed in `ffi` only, which has no unsafe
+// blocks (results leave through buffers the page reads, nothing comes in by pointer).
+#![deny(unsafe_code)]
+
 use kappa::editor::{Change, Editor};
 use kappa::Scheme;
 use kurbo::{BezPath, PathEl, Point};
 
+#[allow(unsafe_code)]
 pub mod ffi;
 
 /// Verb code of [`PathEl::MoveTo`] in an encoded path.

@@ -23,7 +23,7 @@ if [ ! -x /usr/bin/chromium ]; then
 fi
 
 step "wasm crate: fmt, clippy, unit tests"
-cargo fmt --all -- --check
+cargo fmt -- --check
 cargo clippy --locked --all-targets -- -D warnings
 cargo test --locked
 
