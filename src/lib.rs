@@ -84,7 +84,7 @@
 //! - `serde`: JSON drawings ([`Design`]).
 //! - `font`: glyph import (ttf-parser), UFO export (norad), compiled fonts (write-fonts).
 //! - `tessellate`: fill and stroke meshes (lyon).
-//! - `cli`: the `kappa` command-line tool (implies all of the above).
+//! - `cli`: the `kappa` command-line tool (implies `render`, `serde` and `font`).
 //!
 //! A plain library build depends on kurbo, polycool and thiserror only.
 #![forbid(unsafe_code)]

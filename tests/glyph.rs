@@ -7,9 +7,10 @@ use std::path::{Path, PathBuf};
 
 use kappa::analysis::CurvatureAnalysis;
 use kappa::glyph::{
-    compile_font, draft, fill_mesh, from_glif, hausdorff, is_quadratic, on_curve_points, quantize,
-    stroke_mesh, to_glif, to_quadratic, to_svg, word_scene, AnchorKind, DraftOptions, DraftShape,
-    DraftedGlyph, FontGlyph, FontOutlines, Mesh, PlacedGlyph, AUTO_MAX_SHAPE,
+    compile_font, draft, fill_mesh, from_glif, hausdorff, is_quadratic, on_curve_points,
+    on_curve_split, quantize, stroke_mesh, to_glif, to_quadratic, to_svg, word_figure, word_scene,
+    AnchorKind, DraftOptions, DraftShape, DraftedGlyph, FontGlyph, FontOutlines, Mesh, PlacedGlyph,
+    AUTO_MAX_SHAPE, FIGURE_WORD,
 };
 use kappa::render::golden::{check_golden, Tolerance};
 use kappa::{Error, Scheme};
@@ -77,17 +78,32 @@ fn glyph_import_font_units_y_up() {
     assert!(font.glyph(' ').unwrap().path.elements().is_empty());
 }
 
-/// Hausdorff bound, anchors on the original, corners kept, for κ and auto-shaped εκ-cubic.
+/// Every scheme and shape rule of the drafts: κ, and εκ-cubic and εκ-trig with their
+/// neutral shape, one global shape and the auto shape.
+const ALL_SCHEMES: [(Scheme, DraftShape); 7] = [
+    (Scheme::Kappa, DraftShape::Neutral),
+    (Scheme::EkCubic, DraftShape::Neutral),
+    (Scheme::EkCubic, DraftShape::Global(0.85)),
+    (Scheme::EkCubic, DraftShape::Auto),
+    (Scheme::EkTrig, DraftShape::Neutral),
+    (Scheme::EkTrig, DraftShape::Global(0.8)),
+    (Scheme::EkTrig, DraftShape::Auto),
+];
+
+/// Hausdorff bound, anchors on the original, corners kept, for every glyph of the word in
+/// every scheme.
 #[test]
 fn glyph_draft_sample_within_bound() {
-    for (scheme, shape) in [
-        (Scheme::Kappa, DraftShape::Neutral),
-        (Scheme::EkCubic, DraftShape::Auto),
-    ] {
+    for (scheme, shape) in ALL_SCHEMES {
         let tol = options(scheme, shape.clone()).tolerance;
         for (g, d) in drafted_word(scheme, shape.clone()) {
             let h = d.hausdorff.unwrap();
-            assert!(h <= tol, "{scheme:?} {}: Hausdorff {h} > {tol}", g.ch);
+            assert!(
+                h <= tol,
+                "{scheme:?} {shape:?} {}: Hausdorff {h} > {tol}",
+                g.ch
+            );
+            assert!(d.within_tolerance());
             // The reported piecewise distance bounds the outline's Hausdorff distance, measured
             // independently on 4x the samples (up to the sampling step).
             let whole = hausdorff(&g.path, &d.path, 64);
@@ -112,19 +128,64 @@ fn glyph_draft_sample_within_bound() {
                     assert!((segs[0].start() - first.point).hypot() < 1e-9);
                     assert!((segs.last().unwrap().end() - last.point).hypot() < 1e-9);
                 }
-                // The κ/εκ curve passes through every anchor.
+                // The κ/εκ curve passes through every anchor: exactly, and the fitted path
+                // of an εκ-trig curve within its fitting tolerance (tolerance / 20).
+                let fit = if scheme == Scheme::EkTrig {
+                    tol / 20.0
+                } else {
+                    0.0
+                };
                 for a in &piece.anchors {
+                    let exact = piece
+                        .spline
+                        .segments()
+                        .iter()
+                        .map(|s| (s.eval(s.t_max) - a.point).hypot())
+                        .fold(f64::INFINITY, f64::min);
+                    if piece.anchors.len() > 2 && (piece.closed || a.kind != AnchorKind::Corner) {
+                        assert!(exact < 1e-6, "curve misses its anchor by {exact}");
+                    }
                     let d = piece
                         .path
                         .segments()
                         .map(|s| s.nearest(a.point, 1e-12).distance_sq)
                         .fold(f64::INFINITY, f64::min)
                         .sqrt();
-                    assert!(d < 1e-6, "curve misses its anchor by {d}");
+                    assert!(d < fit + 1e-6, "path misses its anchor by {d}");
                 }
             }
             assert!(d.anchor_count() >= 4 && d.original_on_curve() >= 4);
         }
+    }
+}
+
+/// The simplification keeps every glyph of the word within the bound with no more anchors,
+/// and fewer in all.
+#[test]
+fn glyph_simplify_sample() {
+    for (scheme, shape) in [
+        (Scheme::Kappa, DraftShape::Neutral),
+        (Scheme::EkCubic, DraftShape::Auto),
+    ] {
+        let mut simple = options(scheme, shape.clone());
+        simple.simplify = true;
+        let data = font_data();
+        let font = FontOutlines::parse(&data).unwrap();
+        let (mut before, mut after) = (0, 0);
+        for (g, d) in drafted_word(scheme, shape.clone()) {
+            let s = draft(&g.path, &simple).unwrap();
+            let h = s.hausdorff.unwrap();
+            assert!(
+                h <= simple.tolerance && s.within_tolerance(),
+                "{}: {h}",
+                g.ch
+            );
+            assert!(hausdorff(&font.glyph(g.ch).unwrap().path, &s.path, 64) <= h + 0.5);
+            assert!(s.anchor_count() <= d.anchor_count(), "{}", g.ch);
+            before += d.anchor_count();
+            after += s.anchor_count();
+        }
+        assert!(after < before, "{scheme:?}: {after} vs {before}");
     }
 }
 
@@ -555,6 +616,62 @@ fn golden_glyph_sample_kappa() {
 #[test]
 fn golden_glyph_sample_ek_auto() {
     golden("glyph-sample-ek-auto", Scheme::EkCubic, DraftShape::Auto);
+}
+
+/// The gallery figure (`kappa gallery` writes the same as `glyph-sample.png`): "Sample"
+/// original, κ-drafted and auto-shaped εκ-cubic, 1200 × 1000 px.
+#[test]
+fn golden_glyph_sample_figure() {
+    let data = font_data();
+    let font = FontOutlines::parse(&data).unwrap();
+    let kappa = options(Scheme::Kappa, DraftShape::Neutral);
+    let ek = options(Scheme::EkCubic, DraftShape::Auto);
+    let scene = word_figure(&font, FIGURE_WORD, &[kappa, ek], 1200, 1000).unwrap();
+    let image = scene.render().unwrap();
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden/glyph-sample.png");
+    if let Err(e) = check_golden(&path, &image, Tolerance::DEFAULT) {
+        panic!("{e}");
+    }
+    // The SVG of the same scene is a document usvg reads.
+    let svg = scene.to_svg().unwrap();
+    resvg::usvg::Tree::from_str(&svg, &resvg::usvg::Options::default()).unwrap();
+    assert!(matches!(
+        word_figure(&font, "S\u{E000}", &[], 100, 100),
+        Err(Error::MissingGlyph { .. })
+    ));
+}
+
+/// The on-curve points split into stored and implied ones: DejaVu's 'o' stores few and
+/// implies the rest; the counts agree with `on_curve_points`.
+#[test]
+fn glyph_on_curve_split() {
+    let data = font_data();
+    let font = FontOutlines::parse(&data).unwrap();
+    for ch in WORD.chars().chain(['o']) {
+        let path = font.glyph(ch).unwrap().path;
+        let (stored, implied) = on_curve_split(&path);
+        assert_eq!(stored.len(), on_curve_points(&path), "{ch}");
+        assert_eq!(
+            stored.len() + implied.len(),
+            path.segments().count(),
+            "{ch}"
+        );
+        // Every implied point is the midpoint of the off-curve points around it.
+        for p in &implied {
+            let found = kappa::glyph::contours(&path).iter().any(|(segs, _)| {
+                let n = segs.len();
+                (0..n).any(|j| match (segs[j], segs[(j + 1) % n]) {
+                    (kurbo::PathSeg::Quad(a), kurbo::PathSeg::Quad(b)) => {
+                        a.p2 == *p && (a.p1.midpoint(b.p1) - *p).hypot() < 1e-9
+                    }
+                    _ => false,
+                })
+            });
+            assert!(found, "{ch}: {p:?} is not implied");
+        }
+    }
+    let o = font.glyph('o').unwrap().path;
+    assert!(!on_curve_split(&o).1.is_empty());
 }
 
 /// Curvature sign sanity for imported outlines: TrueType outer contours run clockwise (y up),

@@ -62,12 +62,14 @@ pub use export::{is_quadratic, quantize, to_quadratic, to_svg, Quadratic};
 pub use font::{compile_font, FONT_FAMILY};
 #[cfg(feature = "font")]
 pub use import::{FontOutlines, Glyph};
+#[cfg(all(feature = "render", feature = "font"))]
+pub use picture::{word_figure, FIGURE_WORD};
 #[cfg(feature = "render")]
 pub use picture::{word_scene, PlacedGlyph};
 #[cfg(feature = "tessellate")]
 pub use tessellate::{fill_mesh, stroke_mesh, Mesh};
 
-use kurbo::{BezPath, PathEl, PathSeg, Point};
+use kurbo::{BezPath, ParamCurve, PathEl, PathSeg, Point};
 
 /// The contours of a path: the segments of each subpath (kurbo's closing line included,
 /// segments of zero extent dropped) and whether it is closed.
@@ -139,6 +141,36 @@ pub(crate) fn on_curve_points_of(segs: &[PathSeg], closed: bool) -> usize {
         })
         .count();
     joints - implied + if closed { 0 } else { 2 }
+}
+
+/// The on-curve points of an outline: those a designer placed (stored in a `glyf` table),
+/// and the TrueType *implied* ones (see [`on_curve_points_of`]). Open contours list both
+/// ends.
+pub fn on_curve_split(path: &BezPath) -> (Vec<Point>, Vec<Point>) {
+    let (mut placed, mut implied) = (Vec::new(), Vec::new());
+    for (segs, closed) in contours(path) {
+        let n = segs.len();
+        if n == 0 {
+            continue;
+        }
+        if !closed {
+            placed.push(segs[0].start());
+        }
+        let joints = if closed { n } else { n - 1 };
+        for j in 0..joints {
+            let (prev, next) = (segs[j], segs[(j + 1) % n]);
+            let p = prev.end();
+            if is_implied(prev, next) {
+                implied.push(p);
+            } else {
+                placed.push(p);
+            }
+        }
+        if !closed {
+            placed.push(segs[n - 1].end());
+        }
+    }
+    (placed, implied)
 }
 
 /// Whether the joint of two quadratics is the midpoint of their off-curve points.

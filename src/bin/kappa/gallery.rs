@@ -7,6 +7,7 @@ use clap::Args;
 use kappa::gallery::{
     design_scene, paper_scenes, variant_figure, FIGURE_GAP, PAPER_VARIANTS, TRIG_VARIANTS,
 };
+use kappa::glyph::{word_figure, DraftOptions, DraftShape, FontOutlines, FIGURE_WORD};
 use kappa::render::{hstack, Pixmap};
 use kappa::space::{views_figure, View};
 use kappa::{BSpline, BSpline3, Point3, Scheme, SpaceCurve, SpaceOptions, Vec3};
@@ -33,6 +34,11 @@ const INTRINSIC_PANEL: u32 = 260;
 const VIABLE_SAMPLES: usize = 61;
 /// Panels per row of the overview.
 const OVERVIEW_COLUMNS: usize = 3;
+/// Size in pixels of the glyph figure (the golden image `tests/golden/glyph-sample.png`).
+const GLYPH_FIGURE_SIZE: (u32, u32) = (1200, 1000);
+/// The vendored font of the glyph figure (DejaVu Sans, Bitstream Vera licence:
+/// `tests/fonts/DejaVuSans-LICENSE.txt`).
+const GLYPH_FONT: &[u8] = include_bytes!("../../../tests/fonts/DejaVuSans.ttf");
 
 /// Render the README gallery (PNG figures and SVG panels).
 #[derive(Debug, Args)]
@@ -49,7 +55,10 @@ const OVERVIEW_COLUMNS: usize = 3;
         space-helix.png, space-trefoil.png  κ-space curves from the top, front, side and \
         isometrically\n  \
         bsplines.png        uniform cubic B-splines of the B-spline paper (T4, and the trefoil \
-        E3 in an orthographic view) with their maximum curvature marked\n\
+        E3 in an orthographic view) with their maximum curvature marked\n  \
+        glyph-sample.png    \"Sample\" in DejaVu Sans: the original outlines with their \
+        curvature combs and on-curve points (stored filled, implied hollow), then drafted as \
+        κ-curves and as auto-shaped εκ-cubic curves with combs and anchors\n\
         Prints the files written, one per line.",
     after_help = "Examples:\n  kappa gallery\n  kappa gallery --out docs/gallery"
 )]
@@ -130,7 +139,20 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
         .map_err(Failure::new)?;
     write_png(&dir.join("intrinsic-viable.png"), &viable)?;
     write_png(&dir.join("bsplines.png"), &bsplines()?)?;
+    write_png(&dir.join("glyph-sample.png"), &glyph_figure()?)?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// "Sample" from the vendored font: original, κ draft, auto-shaped εκ-cubic draft.
+fn glyph_figure() -> Result<Pixmap> {
+    let font = FontOutlines::parse(GLYPH_FONT).map_err(Failure::new)?;
+    let kappa = DraftOptions::for_units_per_em(font.units_per_em());
+    let ek = kappa.clone().with_scheme(Scheme::EkCubic, DraftShape::Auto);
+    let (width, height) = GLYPH_FIGURE_SIZE;
+    word_figure(&font, FIGURE_WORD, &[kappa, ek], width, height)
+        .map_err(|e| Failure::new(format!("glyph figure: {e}")))?
+        .render()
+        .map_err(|e| Failure::new(format!("glyph figure: {e}")))
 }
 
 /// The B-spline paper's (seed 002 §4) symmetric closed curve T4.

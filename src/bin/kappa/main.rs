@@ -10,6 +10,7 @@ mod curve;
 mod diff;
 mod failure;
 mod gallery;
+mod glyph;
 mod hermite;
 mod picture;
 mod space;
@@ -37,6 +38,7 @@ use failure::EXIT_ERROR;
         kappa bench --repeat 11\n  \
         echo '{\"points\": [[0,0,0],[100,0,30],[100,100,0],[0,100,30]]}' | kappa space\n  \
         kappa gallery --out gallery\n  \
+        kappa glyph --font DejaVuSans.ttf --char S --scheme ek-cubic --shape auto --out S.png\n  \
         echo '{\"start\": {\"point\": [0,0], \"angle\": 0}, \"end\": {\"point\": [10,4], \"angle\": 1.2}, \"degree\": 3}' | kappa hermite"
 )]
 struct Cli {
@@ -53,6 +55,7 @@ enum Command {
     Gallery(gallery::GalleryArgs),
     Space(space::SpaceArgs),
     Hermite(hermite::HermiteArgs),
+    Glyph(glyph::GlyphArgs),
 }
 
 fn main() -> ExitCode {
@@ -69,6 +72,7 @@ fn main() -> ExitCode {
         Command::Gallery(args) => gallery::run(args),
         Command::Space(args) => space::run(args),
         Command::Hermite(args) => hermite::run(args),
+        Command::Glyph(args) => glyph::run(args),
     });
     match result {
         Ok(Ok(code)) => code,
