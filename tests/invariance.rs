@@ -16,10 +16,16 @@ use proptest::prelude::*;
 /// Translation, scaling by a power of two, and reversal / cyclic shifts of the κ-family
 /// curves: the normalized problem is the same up to rounding, so the solution is too.
 const EXACT: f64 = 1e-12;
-/// Rotation and general scaling change the normalized problem (another bounding box), so
-/// the solver converges to the same curve only within its tolerance, amplified by the
-/// conditioning of the system: measured up to about 3e-11 on these inputs.
-const SOLVER: f64 = 2e-10;
+/// Rotation, general scaling and another start point change the normalized problem (another
+/// bounding box, another order of the unknowns), so the solver converges to the same curve
+/// only within its tolerance (1e-12): measured at most 6.6e-14 of the size (300 random
+/// stars, three schemes); the bound leaves a margin for other inputs.
+const SOLVER: f64 = 1e-11;
+/// Reversal runs the solver along the other direction; its Newton path differs, and the two
+/// results agree within the tolerance times the conditioning: measured at most 8.2e-12.
+const REVERSAL: f64 = 5e-11;
+/// κ-space curves (the 3D κ solve plus the replacement quartics).
+const SPACE: f64 = 2e-10;
 /// B-splines: a linear system solved in a normalized frame; any similarity changes the
 /// result by rounding only.
 const LINEAR: f64 = 1e-12;
@@ -151,7 +157,7 @@ proptest! {
             let c = solve(&rev, closed, scheme, a).expect("the reversed input solves");
             let m = c.segments().len();
             let (dp, dt) = difference(&base, &c, |p| p, |j| m - 1 - j, true, size_p);
-            prop_assert!(dp <= SOLVER && dt <= SOLVER, "{scheme:?} reversed: {dp:e} {dt:e}");
+            prop_assert!(dp <= REVERSAL && dt <= REVERSAL, "{scheme:?} reversed: {dp:e} {dt:e}");
             if closed {
                 let k = shift % n;
                 let rotated: Vec<Point> = (0..n).map(|i| pts[(i + k) % n]).collect();
@@ -247,7 +253,7 @@ proptest! {
         prop_assert_eq!(base.segments().len(), c.segments().len());
         for (sa, sb) in base.segments().iter().zip(c.segments()) {
             for (pa, pb) in sa.control_points().iter().zip(sb.control_points()) {
-                prop_assert!(map(*pa).distance(*pb) <= SOLVER * size_m, "{:e}", map(*pa).distance(*pb) / size_m);
+                prop_assert!(map(*pa).distance(*pb) <= SPACE * size_m, "{:e}", map(*pa).distance(*pb) / size_m);
             }
         }
         // Reversal: the segments in reverse order, each reversed.
@@ -259,7 +265,7 @@ proptest! {
             let mut pb = pb.clone();
             pb.reverse();
             for (x, y) in pa.iter().zip(&pb) {
-                prop_assert!(x.distance(*y) <= SOLVER * 100.0);
+                prop_assert!(x.distance(*y) <= SPACE * 100.0);
             }
             prop_assert!((r.max_curvature().value - base.max_curvature().value).abs() <= 1e-9 * base.max_curvature().value);
         }
@@ -271,7 +277,7 @@ proptest! {
                 for (j, sb) in r.segments().iter().enumerate() {
                     let sa = &base.segments()[(j + k * per) % base.segments().len()];
                     for (pa, pb) in sa.control_points().iter().zip(sb.control_points()) {
-                        prop_assert!(pa.distance(*pb) <= SOLVER * 100.0, "shift {}: {:e}", k, pa.distance(*pb));
+                        prop_assert!(pa.distance(*pb) <= SPACE * 100.0, "shift {}: {:e}", k, pa.distance(*pb));
                     }
                 }
             }

@@ -92,11 +92,14 @@ pub fn resolve(data: &[u8]) {
             }
         }
         let r = solver.resolve(&points);
-        if !matches!(
-            r,
-            Err(kappa::Error::InvalidOption(_) | kappa::Error::ShapeCount { .. })
-        ) {
-            // (Those two return before the solver takes the points.)
+        // The solver takes the points unless it returns early: without a previous solve, or
+        // with per-point shapes that cannot follow another number of points.
+        let early = match &r {
+            Err(kappa::Error::InvalidOption(_)) => true,
+            Err(kappa::Error::ShapeCount { .. }) => points.len() != solver_points.len(),
+            _ => false,
+        };
+        if !early {
             solver_points.clone_from(&points);
         }
         let what = format!("{what}; step {step}: {points:?}");
