@@ -740,6 +740,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             let s_try = (s + ds).min(1.0);
             blend(scratch, s_try);
             let step = self.solve(scratch, &budget(total, STEP_BUDGET), 0);
+            total += step.iterations;
             if step.converged {
                 s = s_try;
                 saved.clone_from(&self.state);

@@ -653,8 +653,12 @@ impl Editor {
         out
     }
 
-    /// The nearest point of the curve to `p`, or `None` if there is no curve.
+    /// The nearest point of the curve to `p`, or `None` if there is no curve (or `p` is not
+    /// finite).
     pub fn hit_test(&self, p: Point) -> Option<Hit> {
+        if !p.is_finite() {
+            return None;
+        }
         let mut best: Option<Hit> = None;
         for (k, piece) in self.pieces.iter().enumerate() {
             let Some(spline) = &piece.spline else {
@@ -663,6 +667,9 @@ impl Editor {
             for (j, seg) in spline.segments().iter().enumerate() {
                 let (t, q) = nearest_on_segment(seg, p);
                 let d = (q - p).hypot();
+                if d.is_nan() {
+                    continue;
+                }
                 if best.map_or(true, |b| d < b.distance) {
                     best = Some(Hit {
                         piece: k,
