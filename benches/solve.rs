@@ -179,6 +179,33 @@ fn editor_drag(c: &mut Criterion) {
         });
     }
     g.finish();
+    // The same updates as one drag gesture (Editor::drag_point, what the web page sends):
+    // one undo step for the whole gesture instead of a snapshot per update.
+    let mut g = c.benchmark_group("editor_drag_gesture_100");
+    for (label, scheme) in [
+        ("kappa", Scheme::Kappa),
+        ("ek_cubic", Scheme::EkCubic),
+        ("ek_trig", Scheme::EkTrig),
+    ] {
+        let mut e = Editor::new(scheme);
+        for p in star(100) {
+            e.add_point(p);
+        }
+        e.set_closed(true);
+        let base = e.doc().points[30].point();
+        let mut k = 0usize;
+        g.bench_function(label, |b| {
+            b.iter(|| {
+                k += 1;
+                let off = 0.5 * ((k % 8) as f64 / 4.0 - 1.0);
+                let change = e.drag_point(30, base + kurbo::Vec2::new(off, -off));
+                black_box(change);
+                black_box(e.to_bezpath());
+                black_box(e.curvature_comb(10.0, 8));
+            })
+        });
+    }
+    g.finish();
 }
 
 criterion_group!(benches, bear, warm, scaling, editor_drag);

@@ -31,7 +31,9 @@ pub enum Error {
         /// Index of the second point of the pair (wraps around for closed curves).
         next: usize,
     },
-    /// The points are so far apart that their extent overflows (coordinates near ±1e308).
+    /// The points are so far apart that their extent overflows, or the curve through them
+    /// could (coordinates near ±1e308; the κ-family solvers keep a thousand drawing sizes of
+    /// headroom).
     #[error("the points span more than the largest finite number")]
     ExtentOverflow,
     /// All points lie on one line and the curve would have to turn back along it (every
@@ -82,6 +84,10 @@ pub enum Error {
         /// Index of the offending segment.
         segment: usize,
     },
+    /// A JSON input could not be used: malformed, of the wrong shape, or too large (the `input`
+    /// module, feature `serde`); the message says what and where.
+    #[error("{0}")]
+    InvalidInput(String),
     /// An SVG document could not be read.
     #[error("invalid SVG: {0}")]
     InvalidSvg(String),

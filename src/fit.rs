@@ -221,6 +221,11 @@ pub fn fit<C: ParamCurveFit>(
 const HERMITE_DEPTH: u32 = 12;
 /// Interior samples of the parametric error per Hermite piece.
 const HERMITE_SAMPLES: usize = 8;
+/// Most cubics [`FitMethod::Hermite`] makes of one segment. The depth limit alone does not
+/// bound the work (up to 64 pieces per split): a curve whose error cannot fall below the
+/// tolerance — a tolerance under the rounding of its coordinates, a near-cusp — would split
+/// without end; found by the `editor` fuzz target.
+const HERMITE_MAX_PIECES: usize = 1 << 12;
 
 /// Appends the Hermite cubics of `segment` to `pieces`; returns the largest parametric error
 /// sampled, or `None` if the segment is not finite.
@@ -249,13 +254,16 @@ fn hermite<C: ParamCurveFit>(
         if !err.is_finite() {
             return None;
         }
-        if err <= tolerance || depth >= HERMITE_DEPTH {
+        // The error of Hermite interpolation shrinks like h⁴: split into the predicted number
+        // of equal pieces (with a margin), each checked again, while the budget allows.
+        let k = ((err / tolerance).powf(0.25) * 1.1).ceil().clamp(2.0, 64.0) as usize;
+        if err <= tolerance
+            || depth >= HERMITE_DEPTH
+            || pieces.len() + stack.len() + k > HERMITE_MAX_PIECES
+        {
             worst = worst.max(err);
             pieces.push(cubic);
         } else {
-            // The error of Hermite interpolation shrinks like h⁴: split into the predicted
-            // number of equal pieces (with a margin), each checked again.
-            let k = ((err / tolerance).powf(0.25) * 1.1).ceil().clamp(2.0, 64.0) as usize;
             let mut right = (p3, d3);
             // Right to left, so that the leftmost piece is taken next.
             for i in (0..k).rev() {

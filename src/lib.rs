@@ -78,6 +78,22 @@
 //! system is easy takes over. Every solve is capped and reports its iterations and whether it
 //! converged; non-convergence is an [`Error::NotConverged`], never a silent result.
 //!
+//! # Resource bounds
+//!
+//! Every solve finishes in `O(n · max_iterations)` time and `O(n)` memory for `n` points:
+//! each iteration (a classic local/global step or a Newton step with its line search) is
+//! `O(n)` with bounded inner loops (at most [`SolveOptions::max_iterations`] iterations over
+//! all attempts of a cold solve — the classic starts and every continuation step count; the
+//! root solves for `t` and the line search have fixed caps), and a warm re-solve spends at
+//! most 100 of the iterations before the cold cascade takes the rest. An input the solver
+//! cannot handle ends in [`Error::NotConverged`] with the iterations spent, never in an
+//! endless loop. The other schemes need no iteration cap of this kind: B-spline
+//! interpolation is a direct `O(n)` solve and its maximum curvature `O(n)` polynomial root
+//! finding; κ-space curves add `O(n)` replacements to a capped κ solve; a Hermite solve
+//! takes at most 40 Newton iterations per homotopy step and gives up when the step falls
+//! below 1/4096. The `kappa` tool bounds its input size (`--max-points`, checked while the
+//! JSON is read; see `input`, feature `serde`).
+//!
 //! # Feature flags
 //!
 //! - `render`: [`render`] (resvg, tiny-skia).
@@ -102,6 +118,8 @@ pub mod fit;
 #[cfg(all(feature = "render", feature = "serde"))]
 pub mod gallery;
 pub mod glyph;
+#[cfg(feature = "serde")]
+pub mod input;
 pub mod intrinsic;
 mod linalg;
 mod point3;

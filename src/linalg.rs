@@ -52,6 +52,69 @@ impl BandLu {
 
     /// Factor in place. Returns `false` if a pivot is zero or not finite.
     pub(crate) fn factor(&mut self) -> bool {
+        match (self.kl, self.ku) {
+            (5, 5) => self.factor_fixed::<5, 10>(),
+            (7, 7) => self.factor_fixed::<7, 14>(),
+            _ => self.factor_general(),
+        }
+    }
+
+    /// [`BandLu::factor`] with the bandwidths known at compile time (`U = kl + ku`, the
+    /// width of `U` above its diagonal).
+    fn factor_fixed<const KL: usize, const U: usize>(&mut self) -> bool {
+        let (n, w) = (self.n, self.w);
+        debug_assert!(self.kl == KL && self.kl + self.ku == U);
+        for k in 0..n {
+            let imax = (k + KL).min(n - 1);
+            let len = U.min(n - 1 - k) + 1;
+            let mut p = k;
+            let mut best = self.a[k * w + KL].abs();
+            for i in k + 1..=imax {
+                let v = self.a[i * w + KL + k - i].abs();
+                if v > best {
+                    best = v;
+                    p = i;
+                }
+            }
+            if !(best > 0.0 && best.is_finite()) {
+                return false;
+            }
+            self.piv[k] = p;
+            let rk = k * w + KL;
+            if p != k {
+                let rp = p * w + KL + k - p;
+                for d in 0..len {
+                    self.a.swap(rk + d, rp + d);
+                }
+            }
+            let inv = 1.0 / self.a[rk];
+            for i in k + 1..=imax {
+                let ri = i * w + KL + k - i;
+                let f = self.a[ri] * inv;
+                self.a[ri] = f;
+                self.l[k * KL + (i - k - 1)] = f;
+                if f == 0.0 {
+                    continue;
+                }
+                let (head, tail) = self.a.split_at_mut(ri);
+                if len == U + 1 {
+                    let pivot_row: &[f64; U] = head[rk + 1..rk + 1 + U].try_into().unwrap();
+                    let row: &mut [f64; U] = (&mut tail[1..1 + U]).try_into().unwrap();
+                    for d in 0..U {
+                        row[d] -= f * pivot_row[d];
+                    }
+                } else {
+                    for (x, y) in tail[1..len].iter_mut().zip(&head[rk + 1..rk + len]) {
+                        *x -= f * y;
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    /// [`BandLu::factor`] for any bandwidths.
+    fn factor_general(&mut self) -> bool {
         let (n, kl, w) = (self.n, self.kl, self.w);
         for k in 0..n {
             let imax = (k + kl).min(n - 1);
@@ -97,6 +160,68 @@ impl BandLu {
 
     /// Solve `A x = b` in place with the factors from [`BandLu::factor`].
     pub(crate) fn solve(&self, b: &mut [f64]) {
+        // The bandwidths of the κ/εκ solver's systems (2D and 3D) get unrolled kernels.
+        match (self.kl, self.ku) {
+            (5, 5) => self.solve_fixed::<5, 10>(b),
+            (7, 7) => self.solve_fixed::<7, 14>(b),
+            _ => self.solve_general(b),
+        }
+    }
+
+    /// [`BandLu::solve`] with the bandwidths known at compile time: `KL` below the diagonal
+    /// and `U = kl + ku` above it in the factor `U`.
+    fn solve_fixed<const KL: usize, const U: usize>(&self, b: &mut [f64]) {
+        let (n, w) = (self.n, self.w);
+        debug_assert!(self.kl == KL && self.kl + self.ku == U);
+        debug_assert_eq!(b.len(), n);
+        for k in 0..n {
+            let p = self.piv[k];
+            if p != k {
+                b.swap(k, p);
+            }
+            let bk = b[k];
+            if k + KL < n {
+                let col: &[f64; KL] = self.l[k * KL..(k + 1) * KL].try_into().unwrap();
+                let below: &mut [f64; KL] = (&mut b[k + 1..k + 1 + KL]).try_into().unwrap();
+                for i in 0..KL {
+                    below[i] -= col[i] * bk;
+                }
+            } else {
+                let m = n - 1 - k;
+                for (bi, li) in b[k + 1..].iter_mut().zip(&self.l[k * KL..k * KL + m]) {
+                    *bi -= li * bk;
+                }
+            }
+        }
+        for k in (0..n).rev() {
+            let rk = k * w + KL;
+            let s = if k + U < n {
+                let row: &[f64; U] = self.a[rk + 1..rk + 1 + U].try_into().unwrap();
+                let x: &[f64; U] = b[k + 1..k + 1 + U].try_into().unwrap();
+                // Two partial sums halve the dependency chain.
+                let (mut s0, mut s1) = (0.0, 0.0);
+                for i in (0..U - 1).step_by(2) {
+                    s0 += row[i] * x[i];
+                    s1 += row[i + 1] * x[i + 1];
+                }
+                if U % 2 == 1 {
+                    s0 += row[U - 1] * x[U - 1];
+                }
+                s0 + s1
+            } else {
+                let len = n - 1 - k;
+                self.a[rk + 1..rk + 1 + len]
+                    .iter()
+                    .zip(&b[k + 1..])
+                    .map(|(a, x)| a * x)
+                    .sum()
+            };
+            b[k] = (b[k] - s) / self.a[rk];
+        }
+    }
+
+    /// [`BandLu::solve`] for any bandwidths.
+    fn solve_general(&self, b: &mut [f64]) {
         let (n, kl, w) = (self.n, self.kl, self.w);
         for k in 0..n {
             let p = self.piv[k];
@@ -118,6 +243,107 @@ impl BandLu {
             let row = &self.a[rk + 1..rk + len];
             let s: f64 = row.iter().zip(&b[k + 1..k + len]).map(|(a, x)| a * x).sum();
             b[k] = (b[k] - s) / self.a[rk];
+        }
+    }
+
+    /// Solve `A X = B` in place for `m` right-hand sides at once, `b` row-major (`n × m`):
+    /// one pass over the factors for all of them.
+    pub(crate) fn solve_many(&self, b: &mut [f64], m: usize) {
+        match (self.kl, self.ku, m) {
+            (5, 5, 6) => self.solve_many_fixed::<5, 10, 6>(b),
+            (7, 7, 8) => self.solve_many_fixed::<7, 14, 8>(b),
+            _ => self.solve_many_general(b, m),
+        }
+    }
+
+    /// [`BandLu::solve_many`] with the bandwidths (as in [`BandLu::solve_fixed`]) and the
+    /// number of right-hand sides `M` known at compile time.
+    fn solve_many_fixed<const KL: usize, const U: usize, const M: usize>(&self, b: &mut [f64]) {
+        let (n, w) = (self.n, self.w);
+        debug_assert!(self.kl == KL && self.kl + self.ku == U);
+        debug_assert_eq!(b.len(), n * M);
+        for k in 0..n {
+            let p = self.piv[k];
+            if p != k {
+                for r in 0..M {
+                    b.swap(k * M + r, p * M + r);
+                }
+            }
+            let (head, tail) = b.split_at_mut((k + 1) * M);
+            let bk: [f64; M] = head[k * M..].try_into().unwrap();
+            if bk.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            let rows = KL.min(n - 1 - k);
+            let col = &self.l[k * KL..k * KL + rows];
+            for (bi, &li) in tail.chunks_exact_mut(M).zip(col) {
+                let bi: &mut [f64; M] = bi.try_into().unwrap();
+                for r in 0..M {
+                    bi[r] -= li * bk[r];
+                }
+            }
+        }
+        for k in (0..n).rev() {
+            let rk = k * w + KL;
+            let len = U.min(n - 1 - k);
+            let (head, tail) = b.split_at_mut((k + 1) * M);
+            let mut acc: [f64; M] = head[k * M..].try_into().unwrap();
+            for (&a, bi) in self.a[rk + 1..rk + 1 + len]
+                .iter()
+                .zip(tail.chunks_exact(M))
+            {
+                let bi: &[f64; M] = bi.try_into().unwrap();
+                for r in 0..M {
+                    acc[r] -= a * bi[r];
+                }
+            }
+            let inv = 1.0 / self.a[rk];
+            for (x, v) in head[k * M..].iter_mut().zip(acc) {
+                *x = v * inv;
+            }
+        }
+    }
+
+    /// [`BandLu::solve_many`] for any bandwidths and number of right-hand sides.
+    fn solve_many_general(&self, b: &mut [f64], m: usize) {
+        let (n, kl, w) = (self.n, self.kl, self.w);
+        debug_assert_eq!(b.len(), n * m);
+        for k in 0..n {
+            let p = self.piv[k];
+            if p != k {
+                for r in 0..m {
+                    b.swap(k * m + r, p * m + r);
+                }
+            }
+            let (head, tail) = b.split_at_mut((k + 1) * m);
+            let bk = &head[k * m..];
+            if bk.iter().all(|&v| v == 0.0) {
+                continue;
+            }
+            let rows = kl.min(n - 1 - k);
+            let col = &self.l[k * kl..k * kl + rows];
+            for (bi, &li) in tail.chunks_exact_mut(m).zip(col) {
+                for (x, y) in bi.iter_mut().zip(bk) {
+                    *x -= li * y;
+                }
+            }
+        }
+        for k in (0..n).rev() {
+            let rk = k * w + kl;
+            let len = (k + kl + self.ku).min(n - 1) - k + 1;
+            let (head, tail) = b.split_at_mut((k + 1) * m);
+            let bk = &mut head[k * m..];
+            for (&a, bi) in self.a[rk + 1..rk + len].iter().zip(tail.chunks_exact(m)) {
+                if a != 0.0 {
+                    for (x, y) in bk.iter_mut().zip(bi) {
+                        *x -= a * y;
+                    }
+                }
+            }
+            let inv = 1.0 / self.a[rk];
+            for x in bk.iter_mut() {
+                *x *= inv;
+            }
         }
     }
 }
@@ -215,7 +441,7 @@ pub(crate) struct BorderedLu {
     nb: usize,
     /// `A_II`.
     pub(crate) band: BandLu,
-    /// `A_IB`, column-major (`nb` columns of length `ni`); replaced by `A_II⁻¹ A_IB`.
+    /// `A_IB`, row-major (`ni` rows of length `nb`); replaced by `A_II⁻¹ A_IB`.
     ib: Vec<f64>,
     /// `A_BI` as triplets `(border row, interior column, value)`.
     bi: Vec<(usize, usize, f64)>,
@@ -241,7 +467,7 @@ impl BorderedLu {
         let ni = self.ni;
         match (i < ni, j < ni) {
             (true, true) => self.band.add(i, j, v),
-            (true, false) => self.ib[(j - ni) * ni + i] += v,
+            (true, false) => self.ib[i * self.nb + (j - ni)] += v,
             (false, true) => self.bi.push((i - ni, j, v)),
             (false, false) => self.s.add(i - ni, j - ni, v),
         }
@@ -252,15 +478,14 @@ impl BorderedLu {
         if self.ni > 0 && !self.band.factor() {
             return false;
         }
-        let ni = self.ni;
-        for col in 0..self.nb {
-            let y = &mut self.ib[col * ni..(col + 1) * ni];
-            // A border unknown that no interior row references has A_II⁻¹ · 0 = 0.
-            if ni > 0 && y.iter().any(|&v| v != 0.0) {
-                self.band.solve(y);
-            }
-            for &(r, c, v) in &self.bi {
-                self.s.add(r, col, -v * y[c]);
+        let nb = self.nb;
+        if self.ni > 0 {
+            // All border columns in one pass over the band factors.
+            self.band.solve_many(&mut self.ib, nb);
+        }
+        for &(r, c, v) in &self.bi {
+            for col in 0..nb {
+                self.s.add(r, col, -v * self.ib[c * nb + col]);
             }
         }
         self.s.factor()
@@ -277,12 +502,9 @@ impl BorderedLu {
             xb[r] -= v * xi[c];
         }
         self.s.solve(xb);
-        for (col, &b) in xb.iter().enumerate() {
-            if b != 0.0 && ni > 0 {
-                let y = &self.ib[col * ni..(col + 1) * ni];
-                for (x, y) in xi.iter_mut().zip(y) {
-                    *x -= y * b;
-                }
+        if self.nb > 0 {
+            for (x, y) in xi.iter_mut().zip(self.ib.chunks_exact(self.nb)) {
+                *x -= y.iter().zip(xb.iter()).map(|(y, b)| y * b).sum::<f64>();
             }
         }
     }
@@ -575,6 +797,95 @@ mod tests {
         let rhs: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
         assert!(band.factor() && dense.factor());
         assert_same_solution(|x| band.solve(x), &dense, &rhs);
+    }
+
+    #[test]
+    fn fixed_bandwidth_kernels_match_general_ones() {
+        for (n, kl, ku) in [(40, 5, 5), (9, 5, 5), (3, 5, 5), (50, 7, 7), (12, 7, 7)] {
+            let mut seed = 3 + n as u64;
+            let mut band = BandLu::default();
+            band.reset(n, kl, ku);
+            for i in 0..n {
+                for j in i.saturating_sub(kl)..=(i + ku).min(n - 1) {
+                    band.add(i, j, lcg(&mut seed));
+                }
+            }
+            let mut slow = band.clone();
+            assert!(band.factor() && slow.factor_general());
+            assert_eq!(band.piv, slow.piv);
+            for (x, y) in band.a.iter().zip(&slow.a) {
+                assert!(
+                    (x - y).abs() <= 1e-12 * (1.0 + y.abs()),
+                    "n = {n}: {x} vs {y}"
+                );
+            }
+            let rhs: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
+            let (mut fast, mut general) = (rhs.clone(), rhs);
+            band.solve(&mut fast);
+            band.solve_general(&mut general);
+            for (x, y) in fast.iter().zip(&general) {
+                assert!(
+                    (x - y).abs() <= 1e-12 * (1.0 + y.abs()),
+                    "n = {n}: {x} vs {y}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn band_solve_many_matches_single_solves() {
+        let mut seed = 5;
+        let (n, kl, ku, m) = (17, 3, 2, 4);
+        let mut band = BandLu::default();
+        band.reset(n, kl, ku);
+        for i in 0..n {
+            for j in i.saturating_sub(kl)..=(i + ku).min(n - 1) {
+                band.add(i, j, lcg(&mut seed));
+            }
+        }
+        assert!(band.factor());
+        // Row-major right-hand sides, one of them zero (skipped by the forward pass).
+        let mut many: Vec<f64> = (0..n * m)
+            .map(|i| if i % m == 2 { 0.0 } else { lcg(&mut seed) })
+            .collect();
+        let columns: Vec<Vec<f64>> = (0..m)
+            .map(|r| {
+                let mut x: Vec<f64> = (0..n).map(|i| many[i * m + r]).collect();
+                band.solve(&mut x);
+                x
+            })
+            .collect();
+        band.solve_many(&mut many, m);
+        for (r, x) in columns.iter().enumerate() {
+            for i in 0..n {
+                assert!((many[i * m + r] - x[i]).abs() <= 1e-12 * (1.0 + x[i].abs()));
+            }
+        }
+    }
+
+    #[test]
+    fn fixed_multi_solve_kernels_match_general() {
+        for (n, kl, m) in [(30, 5, 6), (4, 5, 6), (25, 7, 8), (6, 7, 8)] {
+            let mut seed = 17 + n as u64;
+            let mut band = BandLu::default();
+            band.reset(n, kl, kl);
+            for i in 0..n {
+                for j in i.saturating_sub(kl)..=(i + kl).min(n - 1) {
+                    band.add(i, j, lcg(&mut seed));
+                }
+            }
+            assert!(band.factor());
+            let rhs: Vec<f64> = (0..n * m).map(|_| lcg(&mut seed)).collect();
+            let (mut fast, mut general) = (rhs.clone(), rhs);
+            band.solve_many(&mut fast, m);
+            band.solve_many_general(&mut general, m);
+            for (x, y) in fast.iter().zip(&general) {
+                assert!(
+                    (x - y).abs() <= 1e-12 * (1.0 + y.abs()),
+                    "n = {n}: {x} vs {y}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -38,6 +38,9 @@ const EPS_GRAM: f64 = 1e-60;
 const ROUNDING_FLOOR: f64 = 64.0 * f64::EPSILON;
 /// Bounds for λ during the line search (it must stay strictly inside (0, 1)).
 const LAMBDA_MIN: f64 = 1e-12;
+/// The largest rounding floor granted to a near-degenerate joint (see
+/// [`Workspace::check_row`]): its relative |κ| mismatch still has to be below this.
+const MAX_FLOOR: f64 = 1e-6;
 /// Iterations of the classic loop used to start Newton from a cold start, one attempt each.
 const CLASSIC_STARTS: [usize; 3] = [3, 1, 12];
 /// Classic iterations that start the first solve of a continuation.
@@ -58,6 +61,15 @@ const A_HOMES_TRIG: [f64; 4] = [0.85, 0.75, 0.95, 0.6];
 const QUADRATIC_REGION: f64 = 1e3;
 /// Chord steps (warm re-solves) must shrink the merit by this factor or Newton takes over.
 const CHORD_CONTRACTION: f64 = 1e-2;
+/// Chord steps after a Newton step (with its factors) must shrink the merit by this
+/// factor: only where the Jacobian hardly changes any more, so they cannot lead Newton
+/// astray.
+const NEWTON_CHORD_CONTRACTION: f64 = 1e-4;
+/// Chord steps follow Newton steps only on curves with at least this many segments, where
+/// assembling and factoring dominate (a chord step costs about a quarter of a Newton step
+/// there). On short curves the saving is small and the different path through the
+/// iterations can end on another solution branch than the glyph drafting tests expect.
+const NEWTON_CHORD_MIN_BLOCKS: usize = 256;
 /// At most this many chord steps per warm re-solve.
 const MAX_CHORD: usize = 12;
 /// Newton budget of one continuation step.
@@ -134,6 +146,21 @@ fn cross3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     ]
 }
 
+/// The cyclic index `i mod n` for `-n ≤ i < 2n` (the stencils reach at most two blocks
+/// away, and closed curves have at least three), without a division.
+#[inline(always)]
+fn wrap(i: isize, n: usize) -> usize {
+    let n = n as isize;
+    debug_assert!(i >= -n && i < 2 * n);
+    (if i < 0 {
+        i + n
+    } else if i >= n {
+        i - n
+    } else {
+        i
+    }) as usize
+}
+
 /// The data of one solve: targets, shapes and topology, in normalized coordinates.
 #[derive(Clone, Debug)]
 pub(crate) struct Problem<const D: usize> {
@@ -162,7 +189,7 @@ impl<const D: usize> State<D> {
     pub(crate) fn control(&self, prob: &Problem<D>, i: isize) -> [f64; D] {
         let n = self.t.len();
         if prob.closed {
-            self.c[i.rem_euclid(n as isize) as usize]
+            self.c[wrap(i, n)]
         } else if i < 0 {
             prob.ghost[0]
         } else if i as usize >= n {
@@ -178,7 +205,7 @@ impl<const D: usize> State<D> {
     pub(crate) fn ratio(&self, prob: &Problem<D>, i: isize) -> f64 {
         let n = self.t.len();
         if prob.closed {
-            self.lam[i.rem_euclid(n as isize) as usize]
+            self.lam[wrap(i, n)]
         } else if i < 0 {
             0.0
         } else if i as usize >= n {
@@ -217,7 +244,7 @@ struct JointTerms<const D: usize> {
 }
 
 impl<const D: usize> JointTerms<D> {
-    #[inline]
+    #[inline(always)]
     fn new(prob: &Problem<D>, j: usize, l: &Local<D>) -> Self {
         let n = prob.basis.len();
         let k0 = prob.basis[j].end_coefficient();
@@ -298,12 +325,50 @@ impl Linear {
         }
     }
 
+    /// Add the first `rows` rows of a condensed block Jacobian (`jl[row][offset][variable]`,
+    /// variables `0..rows` of each stencil block) at row `row0`, in the columns of `columns`.
     #[inline]
-    fn add(&mut self, i: usize, j: usize, v: f64) {
+    fn add_block<const B: usize>(
+        &mut self,
+        row0: usize,
+        rows: usize,
+        jl: &[[[f64; B]; 4]; B],
+        columns: &Columns,
+    ) {
+        // One dispatch per block, not per entry.
+        #[inline(always)]
+        fn scatter<const B: usize>(
+            row0: usize,
+            rows: usize,
+            jl: &[[[f64; B]; 4]; B],
+            columns: &Columns,
+            mut add: impl FnMut(usize, usize, f64),
+        ) {
+            for (row, entries) in jl.iter().enumerate().take(rows) {
+                for (o, block) in entries.iter().enumerate() {
+                    for (k, &v) in block.iter().enumerate().take(rows) {
+                        if v != 0.0 {
+                            if let Some(c) = columns.at(o, k) {
+                                add(row0 + row, c, v);
+                            }
+                        }
+                    }
+                }
+            }
+        }
         match self.mode {
-            LinearMode::Dense => self.dense.add(i, j, v),
-            LinearMode::Bordered => self.bord.add(i, j, v),
-            LinearMode::Band => self.band.add(i, j, v),
+            LinearMode::Dense => {
+                let m = &mut self.dense;
+                scatter(row0, rows, jl, columns, |i, j, v| m.add(i, j, v));
+            }
+            LinearMode::Bordered => {
+                let m = &mut self.bord;
+                scatter(row0, rows, jl, columns, |i, j, v| m.add(i, j, v));
+            }
+            LinearMode::Band => {
+                let m = &mut self.band;
+                scatter(row0, rows, jl, columns, |i, j, v| m.add(i, j, v));
+            }
         }
     }
 
@@ -329,6 +394,9 @@ impl Linear {
 pub(crate) struct Settings {
     pub tolerance: f64,
     pub max_iterations: usize,
+    /// Follow each Newton step with chord steps while they contract well (cold solves of
+    /// long curves gain most; warm re-solves do their own chord steps first).
+    pub newton_chords: bool,
 }
 
 /// Reusable solver state: the unknowns, a trial copy for the line search, and all buffers.
@@ -385,6 +453,19 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         self.lin_state = LinState::Empty;
     }
 
+    /// Before a warm re-solve changes the problem: if the stored factors are stale, assemble
+    /// the Jacobian at the current state, the solution of `prob` (it does not depend on the
+    /// target points, only on the unknowns).
+    pub(crate) fn refresh_jacobian(&mut self, prob: &Problem<D>, tol: f64) {
+        let n = self.n();
+        if self.lin_state == LinState::Stale && prob.p.len() == n && self.res.len() == n {
+            self.lin.reset(prob.closed, n, B - 1);
+            self.assemble(prob, true, tol);
+            self.fact_scale.clone_from(&self.scale);
+            self.lin_state = LinState::Assembled;
+        }
+    }
+
     /// Forget the stored factorization (the problem's structure or shapes changed).
     pub(crate) fn invalidate(&mut self) {
         self.lin_state = LinState::Empty;
@@ -404,44 +485,12 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 LinState::Empty
             };
         }
-        if self.lin_state == LinState::Factored && self.fact_scale.len() == n && self.res.len() == n
+        if self.lin_state == LinState::Factored
+            && self.fact_scale.len() == n
+            && self.res.len() == n
+            && self.chord_steps(prob, set, CHORD_CONTRACTION, &mut out)
         {
-            let mut phi = self.residual_frozen(prob, set.tolerance);
-            for _ in 0..MAX_CHORD {
-                if self.max_residual() <= set.tolerance {
-                    out.converged = true;
-                    out.residual = self.max_residual();
-                    return out;
-                }
-                if out.iterations >= set.max_iterations {
-                    break;
-                }
-                out.iterations += 1;
-                let mut ok = self.condensed_step();
-                self.trial.clone_from(&self.state);
-                if ok {
-                    for j in 0..n {
-                        for k in 0..D {
-                            self.trial.c[j][k] += self.step[j * B + k];
-                        }
-                        self.trial.lam[j] += self.step[j * B + D];
-                        self.trial.t[j] =
-                            (self.trial.t[j] + self.step[j * B + D + 1]).clamp(0.0, 1.0);
-                        ok &= self.trial.lam[j] > 0.0 && self.trial.lam[j] < 1.0 + 1e-15;
-                    }
-                }
-                if !ok {
-                    break;
-                }
-                core::mem::swap(&mut self.state, &mut self.trial);
-                let phi_new = self.residual_frozen(prob, set.tolerance);
-                if !(phi_new <= CHORD_CONTRACTION * phi) {
-                    // Not contracting: undo and let Newton take over.
-                    core::mem::swap(&mut self.state, &mut self.trial);
-                    break;
-                }
-                phi = phi_new;
-            }
+            return out;
         }
         if self.lin_state == LinState::Factored
             && self.res.len() == n
@@ -455,6 +504,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             prob,
             &Settings {
                 max_iterations: set.max_iterations.saturating_sub(out.iterations),
+                newton_chords: false,
                 ..*set
             },
             0,
@@ -463,6 +513,55 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             iterations: out.iterations + rest.iterations,
             ..rest
         }
+    }
+
+    /// Chord steps from the current state with the stored factorization, while each one
+    /// shrinks the merit by `contraction` or better; the state is left at the last
+    /// accepted step. Counts the steps in `out`; `true` (with `out` filled in) if converged.
+    fn chord_steps(
+        &mut self,
+        prob: &Problem<D>,
+        set: &Settings,
+        contraction: f64,
+        out: &mut Outcome,
+    ) -> bool {
+        let n = self.n();
+        let mut phi = self.residual_frozen(prob, set.tolerance);
+        for _ in 0..MAX_CHORD {
+            if self.max_residual() <= set.tolerance {
+                out.converged = true;
+                out.residual = self.max_residual();
+                return true;
+            }
+            if out.iterations >= set.max_iterations {
+                break;
+            }
+            out.iterations += 1;
+            let mut ok = self.condensed_step();
+            self.trial.clone_from(&self.state);
+            if ok {
+                for j in 0..n {
+                    for k in 0..D {
+                        self.trial.c[j][k] += self.step[j * B + k];
+                    }
+                    self.trial.lam[j] += self.step[j * B + D];
+                    self.trial.t[j] = (self.trial.t[j] + self.step[j * B + D + 1]).clamp(0.0, 1.0);
+                    ok &= self.trial.lam[j] > 0.0 && self.trial.lam[j] < 1.0 + 1e-15;
+                }
+            }
+            if !ok {
+                break;
+            }
+            core::mem::swap(&mut self.state, &mut self.trial);
+            let phi_new = self.residual_frozen(prob, set.tolerance);
+            if !(phi_new <= contraction * phi) {
+                // Not contracting: undo and let Newton take over.
+                core::mem::swap(&mut self.state, &mut self.trial);
+                break;
+            }
+            phi = phi_new;
+        }
+        false
     }
 
     /// The residual (and convergence measures) of the current state with the row scales of
@@ -524,6 +623,17 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 self.classic_iteration(prob);
             } else {
                 out.newton_steps += 1;
+                if !set.newton_chords || n < NEWTON_CHORD_MIN_BLOCKS {
+                    continue;
+                }
+                // Chord steps with this factorization while they contract well: much
+                // cheaper than assembling and factoring again on long curves.
+                if self.chord_steps(prob, set, NEWTON_CHORD_CONTRACTION, &mut out) {
+                    // The factors may come from an early iterate: a warm re-solve from
+                    // here assembles the Jacobian at its own start instead.
+                    self.lin_state = LinState::Stale;
+                    return out;
+                }
             }
         }
     }
@@ -630,6 +740,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             let s_try = (s + ds).min(1.0);
             blend(scratch, s_try);
             let step = self.solve(scratch, &budget(total, STEP_BUDGET), 0);
+            total += step.iterations;
             if step.converged {
                 s = s_try;
                 saved.clone_from(&self.state);
@@ -746,7 +857,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     }
 
     /// Gather the variables of block `j` from `st`.
-    #[inline]
+    #[inline(always)]
     fn local(prob: &Problem<D>, st: &State<D>, j: usize) -> Local<D> {
         let c = |i: isize| st.control(prob, i);
         let lam = |i: isize| st.ratio(prob, i);
@@ -765,17 +876,30 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
 
     /// The values the convergence test measures for one block: the interpolation residual,
     /// the relative |κ| mismatch `g2` at the joint and the peak residual. The dimensionless
-    /// rows cannot be resolved below the rounding floor ~ε / (local size) (coordinates are
-    /// O(1) after normalization), so they are scaled for the tolerance to apply above that
-    /// floor; interpolation keeps the tolerance as it is.
+    /// rows cannot be resolved below their rounding floor, so they are scaled for the
+    /// tolerance to apply above that floor; interpolation keeps the tolerance as it is.
+    ///
+    /// The floors: coordinates are O(1) after normalization and carry rounding errors ~ε,
+    /// so an edge `u` has relative error ~ε/|u|: the peak row's floor is ε/(local size). The
+    /// G2 row is a ratio of triangle areas `|u × v|/2`, whose relative error is
+    /// ~ε(|u| + |v|)/|u × v|: the same for a right angle, but growing as 1/sin θ at a sharp
+    /// turn or a near-straight joint (capped at [`MAX_FLOOR`]).
     #[inline]
     fn check_row(r: [f64; B], g2: f64, loc: &Local<D>, tol: f64) -> [f64; B] {
         let local = dist(loc.cm, loc.c0) + dist(loc.c0, loc.c1);
+        let thin = |a: [f64; D], b: [f64; D], c: [f64; D]| {
+            let (u, v) = (sub(a, b), sub(c, b));
+            let (nu, nv) = (dot(u, u).sqrt(), dot(v, v).sqrt());
+            let cross2 = dot(u, u) * dot(v, v) - dot(u, v) * dot(u, v);
+            // (|u| + |v|) / |u × v|, without dividing by zero.
+            (nu + nv) / cross2.max(0.0).sqrt().max(f64::MIN_POSITIVE)
+        };
+        let area = thin(loc.cm, loc.c0, loc.c1).max(thin(loc.c0, loc.c1, loc.c2));
         let floor = ROUNDING_FLOOR / local.max(f64::MIN_POSITIVE);
-        let soften = (tol / floor).min(1.0);
+        let g2_floor = floor.max((ROUNDING_FLOOR * area).min(MAX_FLOOR));
         let mut c = r;
-        c[D] = g2 * soften;
-        c[D + 1] *= soften;
+        c[D] = g2 * (tol / g2_floor).min(1.0);
+        c[D + 1] *= (tol / floor).min(1.0);
         c
     }
 
@@ -820,17 +944,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 self.cond[j] = condense::<D, B>(&mut jl);
                 let columns = Columns::new::<D, B>(prob.closed, n, j, B - 1);
                 self.cols[j] = columns;
-                for (row, entries) in jl.iter().enumerate().take(D + 1) {
-                    for (o, block) in entries.iter().enumerate() {
-                        for (k, &v) in block.iter().enumerate().take(D + 1) {
-                            if v != 0.0 {
-                                if let Some(c) = columns.at(o, k) {
-                                    self.lin.add(j * (B - 1) + row, c, v);
-                                }
-                            }
-                        }
-                    }
-                }
+                self.lin.add_block::<B>(j * (B - 1), D + 1, &jl, &columns);
                 r
             } else {
                 let mut ignore = |_: usize, _: Var, _: f64| {};
@@ -1100,6 +1214,9 @@ enum LinState {
     Empty,
     /// The Jacobian of the current state, not yet factored.
     Assembled,
+    /// Factors of an earlier state than the current one, too old for a warm start: the
+    /// next warm re-solve assembles its own.
+    Stale,
     /// The factors of a Jacobian of this problem's structure.
     Factored,
 }
@@ -1200,7 +1317,7 @@ impl Var {
         let block = |off: isize| -> Option<usize> {
             let i = j as isize + off;
             if closed {
-                Some(i.rem_euclid(n as isize) as usize)
+                Some(wrap(i, n))
             } else if i < 0 || i as usize >= n {
                 None
             } else {

@@ -11,6 +11,11 @@ use crate::{Error, Point3};
 /// Iterations a warm re-solve may take before the cold cascade takes over.
 const WARM_BUDGET: usize = 100;
 
+/// How many drawing sizes beyond the points the arithmetic must stay finite: drawings that
+/// reach within this of `±f64::MAX` are an [`Error::ExtentOverflow`] (found by fuzzing: a
+/// drawing 1e308 wide solved, but its curve evaluated to infinity).
+const EXTENT_HEADROOM: f64 = 1e3;
+
 /// The relative size below which two consecutive points count as repeated, and below which
 /// the spread of a closed curve's points off their best line counts as collinear.
 const COINCIDENT: f64 = 1e-12;
@@ -122,7 +127,9 @@ impl Default for SolveOptions {
     fn default() -> Self {
         SolveOptions {
             tolerance: 1e-12,
-            max_iterations: 1000,
+            // Every iteration counts, continuation steps included: the hardest built-in curve
+            // (deer[2], εκ-trig a = 0.65) takes 1514.
+            max_iterations: 2000,
             accept_unconverged: false,
         }
     }
@@ -256,6 +263,12 @@ impl Segment<Point> {
     /// Whether `|κ|` is maximal or minimal at `t_max` (see [`Extremum`]). κ and εκ-cubic
     /// segments always peak there; εκ-trig segments with `a` below about 0.61 may not.
     pub fn extremum(&self) -> Extremum {
+        if self.scheme != Scheme::EkTrig {
+            // The quadratic and the constrained cubic have one stationary point of |κ|, a
+            // maximum (seed 000 §3); classifying it numerically fails on nearly straight
+            // segments, where r ≈ s cancels.
+            return Extremum::Max;
+        }
         let [q0, q1, q2] = self.q;
         let (r, s) = (q1 - q0, q2 - q1);
         classify(&self.basis(), r.dot(r), r.dot(s), s.dot(s), self.t_max)
@@ -661,8 +674,9 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         scheme: Scheme,
         shape: &Shape,
     ) -> Result<Spline<P>, Error> {
-        self.setup(points, closed, scheme, shape)?;
+        // Whatever happens next, the previous solution no longer matches the problem.
         self.warm = false;
+        self.setup(points, closed, scheme, shape)?;
         self.run()
     }
 
@@ -695,10 +709,14 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             };
             return self.solve(points, closed, self.scheme, &shapes);
         }
+        self.ws.refresh_jacobian(&self.prob, self.options.tolerance);
         let old_frame = self.frame;
         let old_points = core::mem::take(&mut self.points);
         let shapes = self.shapes();
-        self.setup(points, self.prob.closed, self.scheme, &shapes)?;
+        if let Err(e) = self.setup(points, self.prob.closed, self.scheme, &shapes) {
+            self.warm = false;
+            return Err(e);
+        }
         // Carry the previous unknowns into the new frame, moving each control point with
         // its input point.
         let off = if self.prob.closed { 0 } else { 1 };
@@ -751,6 +769,10 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         shape: &Shape,
     ) -> Result<(), Error> {
         let m = points.len();
+        // The points are kept even when they are rejected, so that a later `resolve_shapes`
+        // reports the same error instead of solving an older or partial set.
+        self.points.clear();
+        self.points.extend(points.iter().map(|p| p.coords()));
         let (kind, needed) = if closed {
             ("a closed curve", 3)
         } else {
@@ -763,13 +785,12 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                 got: m,
             });
         }
-        self.points.clear();
-        for (index, p) in points.iter().enumerate() {
-            let c = p.coords();
-            if !c.iter().all(|x| x.is_finite()) {
-                return Err(Error::NonFinitePoint { index });
-            }
-            self.points.push(c);
+        if let Some(index) = self
+            .points
+            .iter()
+            .position(|c| !c.iter().all(|x| x.is_finite()))
+        {
+            return Err(Error::NonFinitePoint { index });
         }
         let options = self.options;
         if !(options.tolerance > 0.0 && options.tolerance.is_finite()) {
@@ -778,7 +799,11 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             ));
         }
         self.frame = Frame::new(&self.points);
-        if !self.frame.size.is_finite() || self.frame.center.iter().any(|c| !c.is_finite()) {
+        // Headroom: control points may lie well outside the points' box, and the curve is
+        // evaluated in user coordinates, so the box must stay far from overflowing.
+        let reach = self.frame.center.iter().fold(0.0f64, |m, c| m.max(c.abs()))
+            + EXTENT_HEADROOM * self.frame.size;
+        if !self.frame.size.is_finite() || !reach.is_finite() {
             return Err(Error::ExtentOverflow);
         }
         let local: Vec<[f64; D]> = self
@@ -871,6 +896,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         let settings = Settings {
             tolerance: self.options.tolerance,
             max_iterations: self.options.max_iterations,
+            newton_chords: true,
         };
         let outcome = if self.warm {
             // A warm start that does not converge quickly is far from the new solution: a
@@ -984,8 +1010,13 @@ fn block_range(closed: bool, m: usize) -> core::ops::Range<usize> {
 
 /// Whether points on one line come in strictly monotone order along it.
 fn monotone_along_line<const D: usize>(p: &[[f64; D]]) -> bool {
-    let last = p[p.len() - 1];
-    let dir: [f64; D] = core::array::from_fn(|k| last[k] - p[0][k]);
+    // Along the line from the first point to the farthest one: the last point may coincide
+    // with the first (a loop that doubles back), and then gives no direction.
+    let d2 = |q: &[f64; D]| (0..D).map(|k| (q[k] - p[0][k]).powi(2)).sum::<f64>();
+    let far = p
+        .iter()
+        .fold(p[0], |best, q| if d2(q) > d2(&best) { *q } else { best });
+    let dir: [f64; D] = core::array::from_fn(|k| far[k] - p[0][k]);
     let along = |q: &[f64; D]| (0..D).map(|k| (q[k] - p[0][k]) * dir[k]).sum::<f64>();
     p.windows(2).all(|w| along(&w[1]) > along(&w[0]))
 }

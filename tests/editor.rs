@@ -116,6 +116,9 @@ fn on_one_line(pts: &[Point], size: f64) -> bool {
 enum Op {
     Add(f64, f64),
     Move(usize, f64, f64),
+    Drag(usize, f64, f64),
+    DragShape(usize, f64),
+    EndDrag,
     Insert(f64, f64),
     Delete(usize),
     Shape(usize, f64),
@@ -130,6 +133,9 @@ fn op() -> impl Strategy<Value = Op> {
     prop_oneof![
         3 => (0.0f64..200.0, 0.0f64..200.0).prop_map(|(x, y)| Op::Add(x, y)),
         3 => (0usize..20, -8.0f64..8.0, -8.0f64..8.0).prop_map(|(i, x, y)| Op::Move(i, x, y)),
+        2 => (0usize..20, -8.0f64..8.0, -8.0f64..8.0).prop_map(|(i, x, y)| Op::Drag(i, x, y)),
+        1 => (0usize..20, 0.7f64..0.95).prop_map(|(i, a)| Op::DragShape(i, a)),
+        1 => Just(Op::EndDrag),
         1 => (0.0f64..200.0, 0.0f64..200.0).prop_map(|(x, y)| Op::Insert(x, y)),
         1 => (0usize..20).prop_map(Op::Delete),
         1 => (0usize..20, 0.7f64..0.95).prop_map(|(i, a)| Op::Shape(i, a)),
@@ -153,6 +159,16 @@ fn apply(e: &mut Editor, op: &Op) {
                 e.move_point(i % n, q);
             }
         }
+        Op::Drag(i, dx, dy) => {
+            if let Some(p) = e.doc().points.get(i % n) {
+                let q = p.point() + kurbo::Vec2::new(dx, dy);
+                e.drag_point(i % n, q);
+            }
+        }
+        Op::DragShape(i, a) => {
+            e.drag_shape(i % n, a);
+        }
+        Op::EndDrag => e.end_drag(),
         Op::Insert(x, y) => {
             e.insert_on_curve(Point::new(x, y));
         }
@@ -358,6 +374,108 @@ fn drags_are_warm_and_errors_keep_the_last_curve() {
     let c = e.move_point(7, q + kurbo::Vec2::new(5.0, 5.0));
     assert!(c.errors.is_empty());
     check(&e);
+}
+
+#[test]
+fn a_drag_gesture_is_one_undo_step() {
+    for scheme in [Scheme::Kappa, Scheme::EkCubic, Scheme::EkTrig] {
+        let mut built = Editor::new(scheme);
+        for p in wave(8) {
+            built.add_point(p);
+        }
+        built.set_closed(true);
+        // A fresh history.
+        let (mut e, _) = Editor::from_doc(built.doc().clone());
+        let mut m = e.clone();
+        let (doc0, path0) = (e.doc().clone(), e.to_bezpath());
+        // A gesture of 50 updates draws exactly what 50 single moves draw.
+        let start = e.doc().points[3].point();
+        for k in 1..=50 {
+            let q = start + kurbo::Vec2::new(0.3 * k as f64, -0.2 * k as f64);
+            let c = e.drag_point(3, q);
+            assert!(c.errors.is_empty() && !c.restructured, "{scheme:?}: {c:?}");
+            m.move_point(3, q);
+        }
+        assert_eq!(e.doc(), m.doc());
+        assert_eq!(e.to_bezpath(), m.to_bezpath());
+        check(&e);
+        e.end_drag();
+        let (doc1, path1) = (e.doc().clone(), e.to_bezpath());
+        // A second gesture on the same point after end_drag, then one on another point
+        // without end_drag: three undo steps in all.
+        e.drag_point(3, start);
+        let (doc2, path2) = (e.doc().clone(), e.to_bezpath());
+        e.drag_point(5, e.doc().points[5].point() + kurbo::Vec2::new(4.0, 4.0));
+        e.drag_point(5, e.doc().points[5].point() + kurbo::Vec2::new(4.0, 4.0));
+        check(&e);
+        let (doc3, path3) = (e.doc().clone(), e.to_bezpath());
+        for (doc, path) in [(&doc2, &path2), (&doc1, &path1), (&doc0, &path0)] {
+            assert!(e.undo());
+            assert_eq!(e.doc(), doc);
+            assert_eq!(&e.to_bezpath(), path);
+        }
+        assert!(
+            !e.undo(),
+            "{scheme:?}: the gestures took more than three steps"
+        );
+        for (doc, path) in [(&doc1, &path1), (&doc2, &path2), (&doc3, &path3)] {
+            assert!(e.redo());
+            assert_eq!(e.doc(), doc);
+            assert_eq!(&e.to_bezpath(), path);
+        }
+        // A drag after an undo starts a new step and drops the redo history.
+        e.undo();
+        e.drag_point(5, Point::new(1.0, 2.0));
+        assert!(!e.redo());
+        assert!(e.undo());
+        assert_eq!(e.doc(), &doc2);
+        // Out of range: nothing happens.
+        assert_eq!(
+            e.drag_point(99, Point::ZERO),
+            kappa::editor::Change::default()
+        );
+        assert_eq!(e.drag_shape(99, 0.8), kappa::editor::Change::default());
+    }
+}
+
+#[test]
+fn a_shape_slider_drag_is_one_undo_step() {
+    for scheme in [Scheme::EkCubic, Scheme::EkTrig] {
+        let mut built = Editor::new(scheme);
+        for p in wave(7) {
+            built.add_point(p);
+        }
+        let (mut e, _) = Editor::from_doc(built.doc().clone());
+        let mut m = e.clone();
+        let (doc0, path0) = (e.doc().clone(), e.to_bezpath());
+        for k in 0..30 {
+            let a = 0.7 + 0.008 * k as f64;
+            let c = e.drag_shape(2, a);
+            assert!(
+                c.errors.is_empty() && c.resolved == [0],
+                "{scheme:?}: {c:?}"
+            );
+            m.set_shape(2, a);
+        }
+        // The same curve as single shape edits, passing through its points with peaks.
+        assert_eq!(e.doc(), m.doc());
+        assert_eq!(e.to_bezpath(), m.to_bezpath());
+        check(&e);
+        // A drag of the point right after is a new step; so is another slider drag after
+        // end_drag.
+        let (doc1, path1) = (e.doc().clone(), e.to_bezpath());
+        e.drag_point(2, e.doc().points[2].point() + kurbo::Vec2::new(3.0, 0.0));
+        let (doc2, path2) = (e.doc().clone(), e.to_bezpath());
+        e.end_drag();
+        e.drag_shape(4, 0.9);
+        e.drag_shape(4, 0.91);
+        for (doc, path) in [(&doc2, &path2), (&doc1, &path1), (&doc0, &path0)] {
+            assert!(e.undo());
+            assert_eq!(e.doc(), doc);
+            assert_eq!(&e.to_bezpath(), path);
+        }
+        assert!(!e.undo());
+    }
 }
 
 #[test]

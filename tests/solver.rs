@@ -775,3 +775,43 @@ fn open_points_doubling_back_along_a_line_are_collinear() {
         .solve(&sorted, false, Scheme::Kappa, &Shape::Neutral)
         .is_ok());
 }
+
+/// Long curves (hundreds of segments) follow Newton steps with chord steps: the result
+/// must satisfy every property, use fewer Newton steps than iterations, and a warm re-solve
+/// afterwards (which re-assembles the Jacobian at the solution) must agree with a cold one.
+#[test]
+fn long_curves_use_chord_steps_and_stay_exact() {
+    let n = 400;
+    let pts: Vec<Point> = (0..n)
+        .map(|i| {
+            let th = i as f64 / n as f64 * std::f64::consts::TAU;
+            let r = if i % 2 == 0 { 100.0 } else { 90.0 };
+            Point::new(r * th.cos(), r * th.sin())
+        })
+        .collect();
+    for (scheme, a) in [(Scheme::EkCubic, 0.85), (Scheme::Kappa, 2.0 / 3.0)] {
+        let mut solver = Solver::new();
+        let cold = solver
+            .solve(&pts, true, scheme, &shape_of(scheme, a))
+            .unwrap();
+        check_spline(&cold, &pts, true, 200.0, "long cold");
+        let report = cold.report();
+        assert!(
+            report.newton_steps + 3 < report.iterations,
+            "{scheme:?}: {report:?}"
+        );
+        let mut moved = pts.clone();
+        moved[17] += kurbo::Vec2::new(0.4, -0.3);
+        let warm = solver.resolve(&moved).unwrap();
+        check_spline(&warm, &moved, true, 200.0, "long warm");
+        let fresh = Solver::new()
+            .solve(&moved, true, scheme, &shape_of(scheme, a))
+            .unwrap();
+        for (w, c) in warm.segments().iter().zip(fresh.segments()) {
+            for k in 0..3 {
+                assert!(dist(w.q[k], c.q[k]) < 1e-9 * 200.0);
+            }
+        }
+        assert!(warm.iterations() < cold.iterations());
+    }
+}

@@ -4,7 +4,9 @@
 //! flag, open or closed, and a scheme. An [`Editor`] holds a document and its solved curve
 //! and applies edits — add, insert on the curve, move, delete, set shape, toggle corner,
 //! open/close, change scheme — each followed by a re-solve that starts from the previous
-//! solution, and undo/redo.
+//! solution, and undo/redo. A drag gesture (of a point, [`Editor::drag_point`], or of a shape
+//! slider, [`Editor::drag_shape`], until [`Editor::end_drag`]) is one undo step however many
+//! updates it has.
 //!
 //! **Corners** split the path into pieces: each piece runs from one corner (or path end) to
 //! the next and is solved as its own open curve, so the path has a tangent break at every
@@ -203,6 +205,17 @@ pub struct Editor {
     pieces: Vec<Piece>,
     undo: Vec<Snapshot>,
     redo: Vec<Snapshot>,
+    /// The drag gesture in progress, whose start is already on the undo stack.
+    dragging: Option<Gesture>,
+}
+
+/// A drag gesture: what is dragged, and of which point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Gesture {
+    /// The point's position.
+    Point(usize),
+    /// The point's shape (a slider).
+    Shape(usize),
 }
 
 impl Editor {
@@ -332,6 +345,54 @@ impl Editor {
         })
     }
 
+    /// Moves point `i` to `p` as one update of a drag gesture: like [`Editor::move_point`],
+    /// but consecutive drags of the same point make one undo step (the state before the
+    /// gesture's first update), so a drag of a thousand mouse moves is undone at once and
+    /// costs no snapshot per update. The gesture ends at [`Editor::end_drag`], at any other
+    /// edit, undo or redo, or at a drag of another point. Out-of-range indices change
+    /// nothing.
+    pub fn drag_point(&mut self, i: usize, p: Point) -> Change {
+        if i >= self.doc.points.len() {
+            return Change::default();
+        }
+        self.gesture(Gesture::Point(i), |doc| {
+            doc.points[i].x = p.x;
+            doc.points[i].y = p.y;
+            Touched::Positions(vec![i])
+        })
+    }
+
+    /// Sets the shape of point `i` as one update of a slider drag: like
+    /// [`Editor::set_shape`], with the undo steps of [`Editor::drag_point`] (consecutive
+    /// shape drags of the same point are one step, until [`Editor::end_drag`]).
+    pub fn drag_shape(&mut self, i: usize, a: f64) -> Change {
+        if i >= self.doc.points.len() {
+            return Change::default();
+        }
+        self.gesture(Gesture::Shape(i), |doc| {
+            doc.points[i].shape = a;
+            Touched::Shapes(vec![i])
+        })
+    }
+
+    /// Applies an edit of a gesture: a new undo step unless it continues the gesture in
+    /// progress.
+    fn gesture(&mut self, g: Gesture, f: impl FnOnce(&mut PathDoc) -> Touched) -> Change {
+        let change = if self.dragging == Some(g) {
+            self.apply_edit(f)
+        } else {
+            self.edit(f)
+        };
+        self.dragging = Some(g);
+        change
+    }
+
+    /// Ends the drag gesture in progress (on mouse up): the next [`Editor::drag_point`] or
+    /// [`Editor::drag_shape`] starts a new undo step.
+    pub fn end_drag(&mut self) {
+        self.dragging = None;
+    }
+
     /// Deletes point `i`.
     pub fn delete_point(&mut self, i: usize) -> Change {
         if i >= self.doc.points.len() {
@@ -392,6 +453,7 @@ impl Editor {
 
     /// Undoes the last edit; `false` if there is none.
     pub fn undo(&mut self) -> bool {
+        self.dragging = None;
         match self.undo.pop() {
             Some(snap) => {
                 let current = self.snapshot();
@@ -405,6 +467,7 @@ impl Editor {
 
     /// Redoes the last undone edit; `false` if there is none.
     pub fn redo(&mut self) -> bool {
+        self.dragging = None;
         match self.redo.pop() {
             Some(snap) => {
                 let current = self.snapshot();
@@ -438,14 +501,21 @@ impl Editor {
         }
     }
 
-    /// Applies an edit to the document and re-solves what it touched.
+    /// Applies an edit to the document as a new undo step and re-solves what it touched.
     fn edit(&mut self, f: impl FnOnce(&mut PathDoc) -> Touched) -> Change {
+        self.dragging = None;
         let before = self.snapshot();
-        let touched = f(&mut self.doc);
         self.undo.push(before);
         if self.undo.len() > UNDO_LIMIT {
             self.undo.remove(0);
         }
+        self.apply_edit(f)
+    }
+
+    /// Applies an edit to the document (within the current undo step) and re-solves what it
+    /// touched.
+    fn apply_edit(&mut self, f: impl FnOnce(&mut PathDoc) -> Touched) -> Change {
+        let touched = f(&mut self.doc);
         self.redo.clear();
         let specs = pieces_of(&self.doc);
         let same = specs.len() == self.pieces.len()
@@ -566,9 +636,7 @@ impl Editor {
                     // A solved curve is finite, so fitting it cannot fail.
                     s.fit(&options).map(|f| f.path).unwrap_or_default()
                 };
-                for el in path.elements() {
-                    out.push(*el);
-                }
+                append(&mut out, path);
             }
         }
         out
@@ -579,16 +647,18 @@ impl Editor {
         let mut out = BezPath::new();
         for piece in &self.pieces {
             if let Some(s) = &piece.spline {
-                for el in s.curvature_comb(scale, samples).elements() {
-                    out.push(*el);
-                }
+                append(&mut out, s.curvature_comb(scale, samples));
             }
         }
         out
     }
 
-    /// The nearest point of the curve to `p`, or `None` if there is no curve.
+    /// The nearest point of the curve to `p`, or `None` if there is no curve (or `p` is not
+    /// finite).
     pub fn hit_test(&self, p: Point) -> Option<Hit> {
+        if !p.is_finite() {
+            return None;
+        }
         let mut best: Option<Hit> = None;
         for (k, piece) in self.pieces.iter().enumerate() {
             let Some(spline) = &piece.spline else {
@@ -597,6 +667,9 @@ impl Editor {
             for (j, seg) in spline.segments().iter().enumerate() {
                 let (t, q) = nearest_on_segment(seg, p);
                 let d = (q - p).hypot();
+                if d.is_nan() {
+                    continue;
+                }
                 if best.map_or(true, |b| d < b.distance) {
                     best = Some(Hit {
                         piece: k,
@@ -632,6 +705,15 @@ impl Editor {
         }
         out.push_str("</svg>\n");
         out
+    }
+}
+
+/// Appends `path` to `out`, taking it whole when `out` is empty (one piece: no copy).
+fn append(out: &mut BezPath, path: BezPath) {
+    if out.elements().is_empty() {
+        *out = path;
+    } else {
+        out.extend(path.elements().iter().copied());
     }
 }
 

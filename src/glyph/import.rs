@@ -46,6 +46,7 @@ impl<'a> FontOutlines<'a> {
     ///
     /// [`Error::Font`] when ttf-parser cannot read the data.
     pub fn parse(data: &'a [u8]) -> Result<FontOutlines<'a>, Error> {
+        check_collection_header(data)?;
         ttf_parser::Face::parse(data, 0)
             .map(|face| FontOutlines { face })
             .map_err(|e| Error::Font(format!("cannot parse the font: {e}")))
@@ -92,6 +93,23 @@ impl<'a> FontOutlines<'a> {
             advance,
         })
     }
+}
+
+/// Rejects a font collection (`ttcf`) whose table of face offsets runs past the data.
+///
+/// ttf-parser reads that table with a length computed from the face count, and a count near
+/// `u32::MAX` trips a `debug_assert!` there (a panic in debug builds) instead of its
+/// "malformed font" error; found by the `font` fuzz target.
+fn check_collection_header(data: &[u8]) -> Result<(), Error> {
+    if data.len() >= 12 && &data[..4] == b"ttcf" {
+        let faces = u32::from_be_bytes([data[8], data[9], data[10], data[11]]);
+        if 12 + 4 * u64::from(faces) > data.len() as u64 {
+            return Err(Error::Font(
+                "cannot parse the font: the font collection's face table is truncated".into(),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// Collects ttf-parser's outline calls into a kurbo path.

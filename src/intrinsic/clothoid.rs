@@ -109,6 +109,10 @@ pub(crate) fn solve(phi0: f64, delta: f64) -> Option<Clothoid> {
             break;
         }
         a -= step;
+        if a.is_nan() || a.abs() > super::MAX_TURNING {
+            // Diverged: the quadrature of a turning this large costs as much as it says.
+            break;
+        }
     }
     // Fallback: the nearest sign change of g around the guess with X > 0, refined by ITP.
     let bracket = |lo: (f64, f64), hi: (f64, f64)| -> Option<Clothoid> {

@@ -55,6 +55,11 @@ const MAX_STEP_TURNING: f64 = 1.0;
 const LINE_SEARCH_STEPS: usize = 30;
 /// The homotopy gives up when its step in λ falls below this.
 const MIN_HOMOTOPY_STEP: f64 = 1.0 / 4096.0;
+/// The largest total turning `|θ_d|` (radians, about 160 turns) a Hermite problem may ask
+/// for ([`Turning::AsGiven`] takes any angles literally). The quadrature grows with the
+/// turning, and the clothoid search scans around its guess: a turning of 10⁷ radians took
+/// minutes before this bound (found by the `hermite` fuzz target).
+const MAX_HERMITE_TURNING: f64 = 1e3;
 /// The returned segment must meet the end conditions to this (relative to the chord).
 pub const END_TOLERANCE: f64 = 1e-10;
 
@@ -362,6 +367,11 @@ impl Problem {
         let psi = chord_vec.y.atan2(chord_vec.x);
         let phi0 = reduce_angle(h.start.angle - psi);
         let delta = h.turning_angle();
+        if delta.is_nan() || delta.abs() > MAX_HERMITE_TURNING {
+            return Err(Error::NoHermiteSolution {
+                reason: "the total turning exceeds a thousand radians",
+            });
+        }
         let (ia, ib) = if g2.is_some() { (1, n - 1) } else { (0, n) };
         let target = target_rows(
             profile,

@@ -115,7 +115,13 @@ impl SpaceCurve {
             Scheme::Kappa,
             &Shape::Neutral,
         )?;
-        SpaceCurve::from_spline(spline, options)
+        let mut curve = SpaceCurve::from_spline(spline, options)?;
+        if !closed && points.len() == 2 {
+            // Two points make one straight segment with no input point inside it, so no
+            // point has a peak (its segment's `t_max` is just the midpoint).
+            curve.peaks.clear();
+        }
+        Ok(curve)
     }
 
     /// The κ-space curve made from a solved 3D κ-curve (for example from a [`Solver3`] kept

@@ -11,11 +11,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Args;
+use kappa::input::{BSplineInput, BSplinePoints, InputLimits, DEFAULT_MAX_POINTS};
 use kappa::render::Scene;
 use kappa::space::{View, VIEWS};
-use kappa::{BSpline, BSpline3, BSplineCurvatureMax, BSplinePoint, Point3};
-use kurbo::Point;
-use serde::{Deserialize, Serialize};
+use kappa::{BSpline, BSpline3, BSplineCurvatureMax, BSplinePoint};
+use serde::Serialize;
 
 use crate::failure::{self, Failure, Result};
 
@@ -65,20 +65,13 @@ pub struct BSplineArgs {
     #[arg(long, value_name = "W", default_value_t = 600,
           value_parser = clap::value_parser!(u32).range(1..=8192))]
     size: u32,
+    /// The most points the input may have; larger inputs are rejected while they are read.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_POINTS)]
+    max_points: usize,
     /// 3D pictures: the orthographic view (as for `kappa space`).
     #[arg(long, value_name = "VIEW", default_value = "isometric",
           value_parser = clap::builder::PossibleValuesParser::new(VIEWS.map(|v| v.0)))]
     view: String,
-}
-
-/// The input.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct Input {
-    /// `[x, y]` or `[x, y, z]`; `null` entries are accepted here only to be reported clearly.
-    points: Vec<Vec<Option<f64>>>,
-    #[serde(default)]
-    closed: Option<bool>,
 }
 
 /// The output; `P` is `[f64; 2]` or `[f64; 3]`.
@@ -103,21 +96,19 @@ struct MaxOutput<P> {
     points: Vec<P>,
 }
 
-/// Points of either dimension.
-enum Points {
-    Plane(Vec<Point>),
-    Space(Vec<Point3>),
-}
-
 /// Runs `kappa bspline`.
 pub fn run(args: &BSplineArgs) -> Result<ExitCode> {
     let text = match &args.input {
         Some(path) => failure::read_text(path)?,
         None => failure::read_stdin()?,
     };
-    let (points, closed) = parse(&text)?;
-    let (json, scene) = match points {
-        Points::Plane(pts) => {
+    let limits = InputLimits {
+        max_points: args.max_points,
+    };
+    let input = BSplineInput::from_json(&text, &limits).map_err(Failure::new)?;
+    let closed = input.closed;
+    let (json, scene) = match input.points {
+        BSplinePoints::Plane(pts) => {
             let s = BSpline::new(&pts, closed).map_err(Failure::new)?;
             let json = to_json(&output(&s, |p| [p.x, p.y])?)?;
             (
@@ -125,7 +116,7 @@ pub fn run(args: &BSplineArgs) -> Result<ExitCode> {
                 wants_picture(args).then(|| s.scene(args.size, args.size)),
             )
         }
-        Points::Space(pts) => {
+        BSplinePoints::Space(pts) => {
             let s = BSpline3::new(&pts, closed).map_err(Failure::new)?;
             let json = to_json(&output(&s, |p| [p.x, p.y, p.z])?)?;
             let view = VIEWS
@@ -151,47 +142,6 @@ fn wants_picture(args: &BSplineArgs) -> bool {
 
 fn write_pictures(args: &BSplineArgs, scene: &Scene) -> Result<()> {
     crate::picture::write_pictures(scene, args.svg.as_deref(), args.png.as_deref())
-}
-
-/// Parses the input JSON.
-fn parse(text: &str) -> Result<(Points, bool)> {
-    let input: Input = serde_json::from_str(text)
-        .map_err(|e| Failure::new(format!("invalid B-spline JSON: {e}")))?;
-    let closed = input.closed.unwrap_or(true);
-    let dim = input.points.first().map_or(2, Vec::len);
-    if dim != 2 && dim != 3 {
-        return Err(Failure::new(format!(
-            "point 0 has {dim} coordinates, expected 2 ([x, y]) or 3 ([x, y, z])"
-        )));
-    }
-    let mut coords = Vec::with_capacity(input.points.len());
-    for (index, p) in input.points.iter().enumerate() {
-        if p.len() != dim {
-            return Err(Failure::new(format!(
-                "point {index} has {} coordinates, but point 0 has {dim}",
-                p.len()
-            )));
-        }
-        let c: Option<Vec<f64>> = p.iter().copied().collect();
-        let Some(c) = c else {
-            return Err(Failure::new(format!(
-                "point {index} has a null coordinate (JSON has no NaN or infinity; \
-                 coordinates must be finite numbers)"
-            )));
-        };
-        coords.push(c);
-    }
-    let points = if dim == 2 {
-        Points::Plane(coords.iter().map(|c| Point::new(c[0], c[1])).collect())
-    } else {
-        Points::Space(
-            coords
-                .iter()
-                .map(|c| Point3::new(c[0], c[1], c[2]))
-                .collect(),
-        )
-    };
-    Ok((points, closed))
 }
 
 /// The output object of a spline, with `coords` giving the JSON form of a point.
@@ -251,6 +201,13 @@ fn to_json<T: Serialize>(value: &T) -> Result<String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use BSplinePoints as Points;
+
+    /// The library's parser with the default limits, as the tool calls it.
+    fn parse(text: &str) -> Result<(Points, bool)> {
+        let input = BSplineInput::from_json(text, &InputLimits::default()).map_err(Failure::new)?;
+        Ok((input.points, input.closed))
+    }
 
     #[test]
     fn bspline_input_dimensions_and_defaults() {

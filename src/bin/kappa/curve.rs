@@ -14,6 +14,7 @@ use std::process::ExitCode;
 
 use clap::{ArgGroup, Args, ValueEnum};
 use kappa::fit::FitOptions;
+use kappa::input::{CurveInput, InputLimits, DEFAULT_MAX_POINTS};
 use kappa::{Design, Extremum, Scheme, Shape, SolveOptions, Solver, Spline};
 use kurbo::Point;
 use serde::{Deserialize, Serialize};
@@ -89,6 +90,10 @@ pub struct CurveArgs {
     /// of failing.
     #[arg(long)]
     allow_unconverged: bool,
+    /// The most points a curve (or a whole drawing) may have; larger inputs are rejected
+    /// while they are read, before any solving.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_POINTS)]
+    max_points: usize,
     /// Also write an SVG picture (curves, input points, curvature combs) to FILE.
     #[arg(long, value_name = "FILE")]
     svg: Option<PathBuf>,
@@ -131,21 +136,6 @@ impl SchemeName {
             Scheme::EkTrig => SchemeName::EkTrig,
         }
     }
-}
-
-/// The input of a single curve.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct CurveInput {
-    /// `[x, y]` pairs; `null` entries are accepted here only to be reported clearly.
-    points: Vec<Vec<Option<f64>>>,
-    #[serde(default)]
-    closed: Option<bool>,
-    #[serde(default)]
-    scheme: Option<SchemeName>,
-    /// A number or a list of numbers, checked in [`parse_shape`].
-    #[serde(default)]
-    shape: Option<serde_json::Value>,
 }
 
 /// One solved curve in the output.
@@ -213,6 +203,15 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode> {
         (None, Some(name)) => Some(builtin::load(name)?),
         (None, None) => None,
     };
+    if let Some(design) = &drawing {
+        let total: usize = design.curves.iter().map(|c| c.points.len()).sum();
+        if total > args.max_points {
+            return Err(Failure::new(format!(
+                "the drawing has {total} points, more than the limit of {} (see --max-points)",
+                args.max_points
+            )));
+        }
+    }
     let (text, solved) = match drawing {
         Some(design) => {
             let scheme = args.scheme.unwrap_or(SchemeName::Kappa).scheme();
@@ -236,7 +235,10 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode> {
                 Some(path) => failure::read_text(path)?,
                 None => failure::read_stdin()?,
             };
-            let job = parse_curve(&text)?;
+            let limits = InputLimits {
+                max_points: args.max_points,
+            };
+            let job = parse_curve_with(&text, &limits)?;
             let spline = solve(&mut solver, &job)?;
             let out = curve_output(&spline)?;
             (to_json(&out)?, vec![(spline, job.points)])
@@ -250,61 +252,22 @@ pub fn run(args: &CurveArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Parses the single-curve JSON input.
-fn parse_curve(text: &str) -> Result<Job> {
-    let input: CurveInput =
-        serde_json::from_str(text).map_err(|e| Failure::new(format!("invalid curve JSON: {e}")))?;
-    let mut points = Vec::with_capacity(input.points.len());
-    for (index, p) in input.points.iter().enumerate() {
-        let [x, y] = p.as_slice() else {
-            return Err(Failure::new(format!(
-                "point {index} has {} coordinates, expected 2 ([x, y])",
-                p.len()
-            )));
-        };
-        let (Some(x), Some(y)) = (x, y) else {
-            return Err(Failure::new(format!(
-                "point {index} has a null coordinate (JSON has no NaN or infinity; \
-                 coordinates must be finite numbers)"
-            )));
-        };
-        points.push(Point::new(*x, *y));
-    }
-    let scheme = input.scheme.unwrap_or(SchemeName::Kappa).scheme();
-    let shape = match &input.shape {
-        None => Shape::Neutral,
-        Some(value) => parse_shape(value)?,
-    };
+/// Parses the single-curve JSON input (through the library's [`CurveInput`], which bounds
+/// the number of points while parsing).
+fn parse_curve_with(text: &str, limits: &InputLimits) -> Result<Job> {
+    let input = CurveInput::from_json(text, limits).map_err(Failure::new)?;
     Ok(Job {
-        points,
-        closed: input.closed.unwrap_or(true),
-        scheme,
-        shape,
+        points: input.points,
+        closed: input.closed,
+        scheme: input.scheme,
+        shape: input.shape,
     })
 }
 
-/// A `"shape"` value: a number, or a list of numbers.
-fn parse_shape(value: &serde_json::Value) -> Result<Shape> {
-    use serde_json::Value;
-    match value {
-        Value::Number(n) => n
-            .as_f64()
-            .map(Shape::Global)
-            .ok_or_else(|| Failure::new(format!("shape {n} is not a usable number"))),
-        Value::Array(items) => items
-            .iter()
-            .enumerate()
-            .map(|(index, v)| {
-                v.as_f64().ok_or_else(|| {
-                    Failure::new(format!("shape parameter {index} is {v}, expected a number"))
-                })
-            })
-            .collect::<Result<Vec<f64>>>()
-            .map(Shape::PerPoint),
-        other => Err(Failure::new(format!(
-            "shape is {other}, expected a number or a list of numbers (one per point)"
-        ))),
-    }
+/// [`parse_curve_with`] with the default limits.
+#[cfg(test)]
+fn parse_curve(text: &str) -> Result<Job> {
+    parse_curve_with(text, &InputLimits::default())
 }
 
 /// The curves of a drawing to solve with `scheme` and the optional global shape `a`.

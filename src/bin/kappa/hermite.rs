@@ -14,9 +14,9 @@ use std::process::ExitCode;
 
 use clap::Args;
 use kappa::fit::FitOptions;
-use kappa::intrinsic::{picture, Control, Hermite, HermiteEnd, IntrinsicSeg, Profile, Turning};
-use kurbo::Point;
-use serde::{Deserialize, Serialize};
+use kappa::input::HermiteInput;
+use kappa::intrinsic::{picture, Hermite, IntrinsicSeg, Profile};
+use serde::Serialize;
 
 use crate::failure::{self, Failure, Result};
 
@@ -75,53 +75,6 @@ pub struct HermiteArgs {
     size: u32,
 }
 
-/// One end of the input.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct EndInput {
-    point: [Option<f64>; 2],
-    angle: f64,
-    #[serde(default)]
-    curvature: Option<f64>,
-}
-
-/// An entry of "control_curvatures".
-#[derive(Debug, Deserialize)]
-#[serde(untagged)]
-enum ControlInput {
-    Given(f64),
-    Same(SameAs),
-}
-
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SameAs {
-    same_as: usize,
-}
-
-/// The turning names of the contract.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-enum TurningName {
-    Nearest,
-    AsGiven,
-}
-
-/// The input.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct HermiteInput {
-    start: EndInput,
-    end: EndInput,
-    degree: usize,
-    #[serde(default)]
-    control_curvatures: Option<Vec<Option<ControlInput>>>,
-    #[serde(default)]
-    weights: Option<Vec<f64>>,
-    #[serde(default)]
-    turning: Option<TurningName>,
-}
-
 /// The output.
 #[derive(Debug, Serialize)]
 struct HermiteOutput {
@@ -173,61 +126,17 @@ fn draw(args: &HermiteArgs, seg: &IntrinsicSeg, hermite: &Hermite) -> Result<()>
     crate::picture::write_pictures(&scene, args.svg.as_deref(), args.png.as_deref())
 }
 
-/// Parses the input into Hermite data and a profile.
+/// Parses the input into Hermite data and a profile (through the library's
+/// [`HermiteInput`], which also bounds the degree and the list lengths).
 fn parse(text: &str) -> Result<(Hermite, Profile)> {
-    let input: HermiteInput = serde_json::from_str(text)
-        .map_err(|e| Failure::new(format!("invalid hermite JSON: {e}")))?;
-    let end = |e: &EndInput, name: &str| -> Result<HermiteEnd> {
-        let [Some(x), Some(y)] = e.point else {
-            return Err(Failure::new(format!(
-                "the {name} point has a null coordinate (JSON has no NaN or infinity; \
-                 coordinates must be finite numbers)"
-            )));
-        };
-        Ok(HermiteEnd {
-            point: Point::new(x, y),
-            angle: e.angle,
-            curvature: e.curvature,
-        })
-    };
-    let n = input.degree;
-    let controls = match input.control_curvatures {
-        None => vec![Control::Free; n + 1],
-        Some(list) => {
-            if list.len() != n + 1 {
-                return Err(Failure::new(format!(
-                    "control_curvatures has {} entries, degree {n} needs {}",
-                    list.len(),
-                    n + 1
-                )));
-            }
-            list.into_iter()
-                .map(|c| match c {
-                    None => Control::Free,
-                    Some(ControlInput::Given(v)) => Control::Given(v),
-                    Some(ControlInput::Same(s)) => Control::Same(s.same_as),
-                })
-                .collect()
-        }
-    };
-    let hermite = Hermite {
-        start: end(&input.start, "start")?,
-        end: end(&input.end, "end")?,
-        turning: match input.turning {
-            None | Some(TurningName::Nearest) => Turning::Nearest,
-            Some(TurningName::AsGiven) => Turning::AsGiven,
-        },
-    };
-    let profile = Profile {
-        controls,
-        weights: input.weights,
-    };
-    Ok((hermite, profile))
+    let input = HermiteInput::from_json(text).map_err(Failure::new)?;
+    Ok((input.hermite, input.profile))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use kappa::intrinsic::{Control, Turning};
 
     #[test]
     fn hermite_input_parses() {

@@ -10,9 +10,9 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Args, ValueEnum};
+use kappa::input::{InputLimits, SpaceInput, DEFAULT_MAX_POINTS};
 use kappa::space::{views_figure, views_scene, Gamma, PeakAtJoint, Replace, VIEWS};
 use kappa::{Point3, SolveOptions, SpaceCurve, SpaceOptions};
-use serde::Deserialize;
 
 use crate::failure::{self, Failure, Result};
 
@@ -63,6 +63,9 @@ pub struct SpaceArgs {
     /// Iteration cap of the κ solver.
     #[arg(long, value_name = "N", default_value_t = SolveOptions::default().max_iterations)]
     max_iterations: usize,
+    /// The most points the input may have; larger inputs are rejected while they are read.
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_MAX_POINTS)]
+    max_points: usize,
     /// Also write the curve as a Wavefront OBJ polyline to FILE.
     #[arg(long, value_name = "FILE")]
     obj: Option<PathBuf>,
@@ -121,18 +124,6 @@ enum ViewName {
     Isometric,
 }
 
-/// The input of `kappa space`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SpaceInput {
-    /// `[x, y, z]` triples; `null` entries are accepted here only to be reported clearly.
-    points: Vec<Vec<Option<f64>>>,
-    #[serde(default)]
-    closed: Option<bool>,
-    #[serde(default)]
-    replace: Option<f64>,
-}
-
 /// A parsed job.
 #[derive(Debug)]
 struct Job {
@@ -147,13 +138,12 @@ pub fn run(args: &SpaceArgs) -> Result<ExitCode> {
         Some(path) => failure::read_text(path)?,
         None => failure::read_stdin()?,
     };
-    let job = parse(&text)?;
-    if !(0.0..=1.0).contains(&job.replace) {
-        return Err(Failure::new(format!(
-            "replace is {}, expected a fraction in [0, 1]",
-            job.replace
-        )));
-    }
+    let job = parse_with(
+        &text,
+        &InputLimits {
+            max_points: args.max_points,
+        },
+    )?;
     let options = SpaceOptions {
         replace: Replace::fraction(job.replace),
         gamma: match args.gamma {
@@ -200,31 +190,21 @@ pub fn run(args: &SpaceArgs) -> Result<ExitCode> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Parses the JSON input.
-fn parse(text: &str) -> Result<Job> {
-    let input: SpaceInput =
-        serde_json::from_str(text).map_err(|e| Failure::new(format!("invalid space JSON: {e}")))?;
-    let mut points = Vec::with_capacity(input.points.len());
-    for (index, p) in input.points.iter().enumerate() {
-        let [x, y, z] = p.as_slice() else {
-            return Err(Failure::new(format!(
-                "point {index} has {} coordinates, expected 3 ([x, y, z])",
-                p.len()
-            )));
-        };
-        let (Some(x), Some(y), Some(z)) = (x, y, z) else {
-            return Err(Failure::new(format!(
-                "point {index} has a null coordinate (JSON has no NaN or infinity; \
-                 coordinates must be finite numbers)"
-            )));
-        };
-        points.push(Point3::new(*x, *y, *z));
-    }
+/// Parses the JSON input (through the library's [`SpaceInput`], which bounds the number of
+/// points while parsing and checks `replace`).
+fn parse_with(text: &str, limits: &InputLimits) -> Result<Job> {
+    let input = SpaceInput::from_json(text, limits).map_err(Failure::new)?;
     Ok(Job {
-        points,
-        closed: input.closed.unwrap_or(true),
-        replace: input.replace.unwrap_or(0.01),
+        points: input.points,
+        closed: input.closed,
+        replace: input.replace,
     })
+}
+
+/// [`parse_with`] with the default limits.
+#[cfg(test)]
+fn parse(text: &str) -> Result<Job> {
+    parse_with(text, &InputLimits::default())
 }
 
 /// The larger side of the points' bounding box (1 for a single point).
