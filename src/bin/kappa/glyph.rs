@@ -58,7 +58,8 @@ const QUAD_TOLERANCE: f64 = 0.5;
         \"max_error\": e}, ...]}\n\
         'anchor_count' is the number of points a designer places (shared piece ends once); \
         'on_curve' counts the original's on-curve points without ('explicit') and with \
-        ('all') the implied points of TrueType quadratics; 'hausdorff' is in font units and \
+        ('all') the implied points of TrueType quadratics (a joint exactly midway between its \
+        off-curve neighbours counts as implied, stored or not); 'hausdorff' is in font units and \
         'within_tolerance' says whether it is at most 'tolerance' (the refinement may stop \
         short: at 32 added anchors per piece, or when no anchor it tries can be solved); \
         each anchor's 'a' is its εκ shape parameter (2/3 for κ-curves and piece ends). \
