@@ -117,7 +117,8 @@ pub struct SolveOptions {
     /// Convergence tolerance, relative to the drawing size (the larger side of the points'
     /// bounding box): interpolation error, and the (dimensionless) G2 and peak conditions.
     pub tolerance: f64,
-    /// Iteration cap (Newton steps plus classic iterations).
+    /// Iteration cap (Newton steps plus classic iterations, over every attempt of a cold
+    /// solve, continuation steps included; default 2000). A solve costs `O(n)` per iteration.
     pub max_iterations: usize,
     /// Return the best curve found instead of [`Error::NotConverged`] when the cap is hit;
     /// [`Spline::converged`] then tells.
