@@ -12,8 +12,9 @@ use crate::{Error, Point3};
 const WARM_BUDGET: usize = 100;
 
 /// How many drawing sizes beyond the points the arithmetic must stay finite: drawings that
-/// reach within this of `±f64::MAX` are an [`Error::ExtentOverflow`] (found by fuzzing: a
-/// drawing 1e308 wide solved, but its curve evaluated to infinity).
+/// reach within this of `±f64::MAX` (or whose centre is beyond a quarter of it) are an
+/// [`Error::ExtentOverflow`] (found by fuzzing: a drawing 1e308 wide solved, but its curve
+/// evaluated to infinity).
 const EXTENT_HEADROOM: f64 = 1e3;
 
 /// The relative size below which two consecutive points count as repeated, and below which
@@ -116,7 +117,8 @@ pub struct SolveOptions {
     /// Convergence tolerance, relative to the drawing size (the larger side of the points'
     /// bounding box): interpolation error, and the (dimensionless) G2 and peak conditions.
     pub tolerance: f64,
-    /// Iteration cap (Newton steps plus classic iterations).
+    /// Iteration cap (Newton steps plus classic iterations, over every attempt of a cold
+    /// solve, continuation steps included; default 2000). A solve costs `O(n)` per iteration.
     pub max_iterations: usize,
     /// Return the best curve found instead of [`Error::NotConverged`] when the cap is hit;
     /// [`Spline::converged`] then tells.
@@ -801,7 +803,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         self.frame = Frame::new(&self.points);
         // Headroom: control points may lie well outside the points' box, and the curve is
         // evaluated in user coordinates, so the box must stay far from overflowing.
-        let reach = self.frame.center.iter().fold(0.0f64, |m, c| m.max(c.abs()))
+        let reach = 4.0 * self.frame.center.iter().fold(0.0f64, |m, c| m.max(c.abs()))
             + EXTENT_HEADROOM * self.frame.size;
         if !self.frame.size.is_finite() || !reach.is_finite() {
             return Err(Error::ExtentOverflow);
@@ -853,7 +855,8 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         if !closed && m == 2 {
             // A straight segment.
             let (p0, p1) = (self.points[0], self.points[1]);
-            let mid = crate::solver::lerp(p0, p1, 0.5);
+            // Halves first: p1 − p0 can overflow where p0/2 + p1/2 does not.
+            let mid: [f64; D] = core::array::from_fn(|k| 0.5 * p0[k] + 0.5 * p1[k]);
             let report = SolveReport {
                 converged: true,
                 ..SolveReport::default()

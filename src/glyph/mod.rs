@@ -84,17 +84,31 @@ pub fn contours(path: &BezPath) -> Vec<(Vec<PathSeg>, bool)> {
         out.push((segs, closed));
         *current = BezPath::new();
     };
+    // Where a subpath that does not begin with MoveTo (a path built without one, which kurbo
+    // allows only in release builds) starts: the current point.
+    let (mut start, mut at) = (Point::ZERO, Point::ZERO);
     for el in path.elements() {
         match el {
-            PathEl::MoveTo(_) => {
+            PathEl::MoveTo(p) => {
                 flush(&mut current, false);
                 current.push(*el);
+                (start, at) = (*p, *p);
             }
             PathEl::ClosePath => {
-                current.push(*el);
-                flush(&mut current, true);
+                if !current.elements().is_empty() {
+                    current.push(*el);
+                    flush(&mut current, true);
+                }
+                at = start;
             }
-            el => current.push(*el),
+            el => {
+                if current.elements().is_empty() {
+                    current.move_to(at);
+                    start = at;
+                }
+                current.push(*el);
+                at = el.end_point().unwrap_or(at);
+            }
         }
     }
     flush(&mut current, false);

@@ -22,6 +22,10 @@ const G_TOLERANCE: f64 = 1e-15;
 const SCAN_STEP: f64 = 0.25;
 /// Steps of the scan in each direction.
 const SCAN_STEPS: usize = 400;
+/// The largest `|A|` the search tries: each evaluation integrates a turning of about `|A|`
+/// (one quadrature piece per 6 radians), so the scan around a guess far beyond this took
+/// seconds per solve (found by the `hermite` fuzz target with many turns, `Turning::AsGiven`).
+const SEARCH_LIMIT: f64 = 1e4;
 
 /// A clothoid in the normalized frame: length and end curvatures (chord length 1).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -97,6 +101,9 @@ pub(crate) fn solve(phi0: f64, delta: f64) -> Option<Clothoid> {
     let g = |a: f64| moments(a, delta, phi0).1;
     let mut a = guess(phi0, phi1);
     for _ in 0..NEWTON_ITERATIONS {
+        if a.is_nan() || a.abs() > SEARCH_LIMIT {
+            break;
+        }
         let (x, y, _, dy) = moments(a, delta, phi0);
         if y.abs() <= G_TOLERANCE {
             if x > 0.0 {
@@ -109,7 +116,7 @@ pub(crate) fn solve(phi0: f64, delta: f64) -> Option<Clothoid> {
             break;
         }
         a -= step;
-        if a.is_nan() || a.abs() > super::MAX_TURNING {
+        if a.is_nan() || a.abs() > SEARCH_LIMIT {
             // Diverged: the quadrature of a turning this large costs as much as it says.
             break;
         }
@@ -134,6 +141,10 @@ pub(crate) fn solve(phi0: f64, delta: f64) -> Option<Clothoid> {
         (x > 0.0).then(|| finish(root, delta, x)).flatten()
     };
     let a0 = guess(phi0, phi1);
+    if a0.is_nan() || a0.abs() > SEARCH_LIMIT {
+        // The guess is fitted for end angles in [−π, π]; far outside, it is no start.
+        return None;
+    }
     let mut right = (a0, g(a0));
     let mut left = right;
     for j in 1..=SCAN_STEPS {
@@ -157,6 +168,9 @@ pub(crate) fn solve(phi0: f64, delta: f64) -> Option<Clothoid> {
 /// angles and, approximately, the end point; a start for other profiles.
 pub(crate) fn approximate(phi0: f64, delta: f64) -> Option<Clothoid> {
     let a = guess(phi0, phi0 + delta);
+    if a.is_nan() || a.abs() > SEARCH_LIMIT {
+        return None;
+    }
     let x = moments(a, delta, phi0).0;
     (x > 0.0).then(|| finish(a, delta, x)).flatten()
 }
