@@ -182,8 +182,9 @@ fn fuzz_smoke_font_compiled() {
 #[test]
 #[ignore = "known findings, not fixed yet"]
 fn fuzz_known_findings() {
-    let targets: [Target; 5] = [
+    let targets: [Target; 6] = [
         ("solve2d", hostile::targets::solve2d),
+        ("resolve", hostile::targets::resolve),
         ("hermite", hostile::targets::hermite),
         ("cli_json", hostile::targets::cli_json),
         ("bspline", hostile::targets::bspline),
