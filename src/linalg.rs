@@ -198,16 +198,17 @@ impl BandLu {
             let s = if k + U < n {
                 let row: &[f64; U] = self.a[rk + 1..rk + 1 + U].try_into().unwrap();
                 let x: &[f64; U] = b[k + 1..k + 1 + U].try_into().unwrap();
-                // Two partial sums halve the dependency chain.
+                // `x[0]` was solved for just before: its product is added last, so the
+                // chain from one row's solution to the next is one multiply-add, and the
+                // rest (two partial sums) runs ahead.
                 let (mut s0, mut s1) = (0.0, 0.0);
-                for i in (0..U - 1).step_by(2) {
+                for i in (1..U).step_by(2) {
                     s0 += row[i] * x[i];
-                    s1 += row[i + 1] * x[i + 1];
+                    if i + 1 < U {
+                        s1 += row[i + 1] * x[i + 1];
+                    }
                 }
-                if U % 2 == 1 {
-                    s0 += row[U - 1] * x[U - 1];
-                }
-                s0 + s1
+                (s0 + s1) + row[0] * x[0]
             } else {
                 let len = n - 1 - k;
                 self.a[rk + 1..rk + 1 + len]
@@ -216,7 +217,8 @@ impl BandLu {
                     .map(|(a, x)| a * x)
                     .sum()
             };
-            b[k] = (b[k] - s) / self.a[rk];
+            // The reciprocal does not depend on `b`: it is computed off the critical path.
+            b[k] = (b[k] - s) * (1.0 / self.a[rk]);
         }
     }
 
@@ -241,8 +243,14 @@ impl BandLu {
             let rk = k * w + kl;
             let len = (k + kl + self.ku).min(n - 1) - k + 1;
             let row = &self.a[rk + 1..rk + len];
-            let s: f64 = row.iter().zip(&b[k + 1..k + len]).map(|(a, x)| a * x).sum();
-            b[k] = (b[k] - s) / self.a[rk];
+            // As in `DenseLu::solve`: the latest unknown enters the sum last.
+            let s: f64 = row
+                .iter()
+                .zip(&b[k + 1..k + len])
+                .rev()
+                .map(|(a, x)| a * x)
+                .sum();
+            b[k] = (b[k] - s) * (1.0 / self.a[rk]);
         }
     }
 
@@ -288,10 +296,16 @@ impl BandLu {
             let len = U.min(n - 1 - k);
             let (head, tail) = b.split_at_mut((k + 1) * M);
             let mut acc: [f64; M] = head[k * M..].try_into().unwrap();
-            for (&a, bi) in self.a[rk + 1..rk + 1 + len]
-                .iter()
-                .zip(tail.chunks_exact(M))
-            {
+            // The row solved just before (`i = 0`) comes last, off the other products'
+            // dependency chain (as in [`BandLu::solve_fixed`]).
+            let row = &self.a[rk + 1..rk + 1 + len];
+            for (&a, bi) in row.iter().zip(tail.chunks_exact(M)).skip(1) {
+                let bi: &[f64; M] = bi.try_into().unwrap();
+                for r in 0..M {
+                    acc[r] -= a * bi[r];
+                }
+            }
+            if let (Some(&a), Some(bi)) = (row.first(), tail.chunks_exact(M).next()) {
                 let bi: &[f64; M] = bi.try_into().unwrap();
                 for r in 0..M {
                     acc[r] -= a * bi[r];
@@ -425,8 +439,10 @@ impl DenseLu {
         }
         for k in (0..n).rev() {
             let row = &self.a[k * n + k + 1..(k + 1) * n];
-            let s: f64 = row.iter().zip(&b[k + 1..]).map(|(a, x)| a * x).sum();
-            b[k] = (b[k] - s) / self.a[k * n + k];
+            // Summed from the far end: the unknown solved just before (`b[k + 1]`) enters
+            // last, so the dependency chain between rows is one multiply-add, not `n - k`.
+            let s: f64 = row.iter().zip(&b[k + 1..]).rev().map(|(a, x)| a * x).sum();
+            b[k] = (b[k] - s) * (1.0 / self.a[k * n + k]);
         }
     }
 }
