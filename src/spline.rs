@@ -384,7 +384,7 @@ impl Spline<Point> {
             for i in 0..m {
                 let t = i as f64 / (m - 1) as f64;
                 let (p, d1, d2) = match &trig {
-                    Some(c) => (c.eval(t), c.derivative(t), c.second_derivative(t)),
+                    Some(c) => c.eval_derivs(t),
                     None => path_seg_derivs(&poly, t),
                 };
                 let len2 = d1.hypot2();

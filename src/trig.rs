@@ -96,8 +96,21 @@ impl TrigBez {
     /// accurate: the derivatives do not carry the rounding of the absolute coordinates.
     #[inline]
     fn with_copy<R>(&self, f: impl FnOnce(&mut [Vec2]) -> R) -> R {
+        /// The copy in an array of exactly `N` points (no unused entries to clear).
+        #[inline(always)]
+        fn exact<const N: usize, R>(points: &[Point], f: impl FnOnce(&mut [Vec2]) -> R) -> R {
+            let mut buf: [Vec2; N] = core::array::from_fn(|i| points[i] - points[0]);
+            f(&mut buf)
+        }
         let n = self.points.len();
-        if n <= STACK_POINTS {
+        // The degrees the εκ-curves use (the constrained quadratic and the linear curve)
+        // get arrays of their own size: clearing the whole stack buffer cost more than the
+        // evaluation.
+        if n == 5 {
+            exact::<5, R>(&self.points, f)
+        } else if n == 3 {
+            exact::<3, R>(&self.points, f)
+        } else if n <= STACK_POINTS {
             let mut buf = [Vec2::ZERO; STACK_POINTS];
             for (b, p) in buf.iter_mut().zip(&self.points) {
                 *b = *p - self.points[0];
@@ -138,6 +151,14 @@ impl TrigBez {
             let d2 = nf * (nf - 1.0) * dot3(k1, &e1, 0) + nf * dot3(k2, &x, 0);
             (origin + dot3(k, &x, 0), d1, d2)
         })
+    }
+
+    /// The point and the first and second derivatives (with respect to this curve's
+    /// parameter) at `t`, from one evaluation.
+    pub fn eval_derivs(&self, t: f64) -> (Point, Vec2, Vec2) {
+        let (s, w) = self.full(t);
+        let (p, d1, d2) = self.eval_full(s);
+        (p, d1 * w, d2 * (w * w))
     }
 
     /// The first derivative with respect to this curve's parameter.
@@ -337,6 +358,24 @@ mod tests {
                 let (d1, d2) = (curve.derivative(t), curve.second_derivative(t));
                 assert!((d1 - fd1).hypot() < 1e-8 * (1.0 + d1.hypot()), "n={n}");
                 assert!((d2 - fd2).hypot() < 1e-7 * (1.0 + d2.hypot()), "n={n}");
+            }
+        }
+    }
+
+    /// `eval_derivs` is the three separate evaluations in one, on full curves and on
+    /// subsegments, for every stack-buffer size (3, 5 and the general one).
+    #[test]
+    fn eval_derivs_matches_separate_evaluations() {
+        for n in 1..=9 {
+            let full = TrigBez::new(pseudo_points(n, 70 + n as u64)).unwrap();
+            for curve in [full.clone(), full.subsegment(0.15..0.8)] {
+                for i in 0..=10 {
+                    let t = i as f64 / 10.0;
+                    let (p, d1, d2) = curve.eval_derivs(t);
+                    assert_eq!(p, curve.eval(t), "n={n}");
+                    assert_eq!(d1, curve.derivative(t), "n={n}");
+                    assert_eq!(d2, curve.second_derivative(t), "n={n}");
+                }
             }
         }
     }
