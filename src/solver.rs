@@ -415,8 +415,6 @@ pub(crate) struct Workspace<const D: usize, const B: usize> {
     reduced: Vec<f64>,
     /// Per block, what eliminating `t_j` left behind (see [`Condensed`]).
     cond: Vec<Condensed<B>>,
-    /// Per block, the condensed system's columns of its stencil (set at assembly).
-    cols: Vec<Columns>,
     lin: Linear,
     /// What `lin` holds (for chord steps), and the row scales it was assembled with.
     lin_state: LinState,
@@ -590,7 +588,6 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         self.scale.resize(n, [1.0; 2]);
         self.step.resize(n * B, 0.0);
         self.cond.resize(n, Condensed::default());
-        self.cols.resize(n, Columns::default());
     }
 
     /// Solve from the current state (a cold start or a previous solution), after `classic`
@@ -841,18 +838,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         self.lin.solve(&mut self.reduced);
         for j in 0..n {
-            let columns = self.cols[j];
             let c = &self.cond[j];
-            let mut acc = -self.res[j][D + 1];
-            for (o, block) in c.row.iter().enumerate() {
-                for (k, &v) in block.iter().enumerate().take(D + 1) {
-                    if v != 0.0 {
-                        if let Some(col) = columns.at(o, k) {
-                            acc -= v * self.reduced[col];
-                        }
-                    }
-                }
-            }
+            let acc = -self.res[j][D + 1] - c.row_dot(&self.reduced);
             self.step[j * B..j * B + bb].copy_from_slice(&self.reduced[j * bb..(j + 1) * bb]);
             self.step[j * B + D + 1] = acc / c.p;
         }
@@ -944,9 +931,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 };
                 let r =
                     Self::eval_block::<true, false>(prob, j, &loc, &mut scale, &mut g2, &mut sink);
-                self.cond[j] = condense::<D, B>(&mut jl);
                 let columns = Columns::new::<D, B>(prob.closed, n, j, B - 1);
-                self.cols[j] = columns;
+                self.cond[j] = condense::<D, B>(&mut jl, &columns);
                 self.lin.add_block::<B>(j * (B - 1), D + 1, &jl, &columns);
                 r
             } else {
@@ -1188,20 +1174,40 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
 struct Condensed<const B: usize> {
     /// Multiplier of the peak row subtracted from each of the other rows of the block.
     m: [f64; B],
-    /// The peak row over the stencil (block offsets -1 ..= 2, variables in block order), its
-    /// own `t_j` entry excluded.
-    row: [[f64; B]; 4],
     /// The pivot `∂R_t / ∂t_j`.
     p: f64,
+    /// The nonzero entries of the peak row (its own `t_j` entry excluded) in the condensed
+    /// system's unknowns, as columns and values (the first `len`): what recovering `δt_j`
+    /// from the condensed solution needs.
+    cols: [u32; BACK_MAX],
+    vals: [f64; BACK_MAX],
+    len: usize,
 }
+
+/// Most condensed unknowns in a block's stencil: four blocks of `D + 1` (3D: 16).
+const BACK_MAX: usize = 16;
 
 impl<const B: usize> Default for Condensed<B> {
     fn default() -> Self {
         Condensed {
             m: [0.0; B],
-            row: [[0.0; B]; 4],
             p: 1.0,
+            cols: [0; BACK_MAX],
+            vals: [0.0; BACK_MAX],
+            len: 0,
         }
+    }
+}
+
+impl<const B: usize> Condensed<B> {
+    /// `Σ row · δ` over the condensed unknowns `reduced`.
+    #[inline]
+    fn row_dot(&self, reduced: &[f64]) -> f64 {
+        self.cols[..self.len]
+            .iter()
+            .zip(&self.vals[..self.len])
+            .map(|(&c, &v)| v * reduced[c as usize])
+            .sum()
     }
 }
 
@@ -1228,7 +1234,10 @@ enum LinState {
 /// `t_j` is variable `D + 1` of offset 0, the peak row is row `D + 1`): subtract multiples of
 /// the peak row from the other rows so that their `t_j` entries vanish.
 #[inline]
-fn condense<const D: usize, const B: usize>(jl: &mut [[[f64; B]; 4]; B]) -> Condensed<B> {
+fn condense<const D: usize, const B: usize>(
+    jl: &mut [[[f64; B]; 4]; B],
+    columns: &Columns,
+) -> Condensed<B> {
     let (tr, to, tk) = (D + 1, 1, D + 1);
     let mut p = jl[tr][to][tk];
     if !(p.abs() >= MIN_PIVOT) {
@@ -1248,9 +1257,24 @@ fn condense<const D: usize, const B: usize>(jl: &mut [[[f64; B]; 4]; B]) -> Cond
             jl[r][to][tk] = 0.0;
         }
     }
-    let mut row = peak;
-    row[to][tk] = 0.0;
-    Condensed { m, row, p }
+    let mut out = Condensed {
+        m,
+        p,
+        ..Condensed::default()
+    };
+    for (o, block) in peak.iter().enumerate() {
+        for (k, &v) in block.iter().enumerate().take(D + 1) {
+            if v != 0.0 {
+                if let Some(col) = columns.at(o, k) {
+                    debug_assert!(u32::try_from(col).is_ok());
+                    out.cols[out.len] = col as u32;
+                    out.vals[out.len] = v;
+                    out.len += 1;
+                }
+            }
+        }
+    }
+    out
 }
 
 /// Which variable of the stencil of block `j` a Jacobian entry belongs to.
