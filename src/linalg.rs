@@ -53,105 +53,103 @@ impl BandLu {
     /// Factor in place. Returns `false` if a pivot is zero or not finite.
     pub(crate) fn factor(&mut self) -> bool {
         match (self.kl, self.ku) {
-            (5, 5) => self.factor_fixed::<5, 10>(),
-            (7, 7) => self.factor_fixed::<7, 14>(),
+            (5, 5) => self.factor_fixed::<5, 10, 16>(),
+            (7, 7) => self.factor_fixed::<7, 14, 22>(),
             _ => self.factor_general(),
         }
     }
 
     /// [`BandLu::factor`] with the bandwidths known at compile time (`U = kl + ku`, the
-    /// width of `U` above its diagonal).
-    fn factor_fixed<const KL: usize, const U: usize>(&mut self) -> bool {
-        let (n, w) = (self.n, self.w);
-        debug_assert!(self.kl == KL && self.kl + self.ku == U);
-        for k in 0..n {
-            let imax = (k + KL).min(n - 1);
-            let len = U.min(n - 1 - k) + 1;
-            let mut p = k;
-            let mut best = self.a[k * w + KL].abs();
-            for i in k + 1..=imax {
-                let v = self.a[i * w + KL + k - i].abs();
+    /// width of `U` above its diagonal; rows of `W = 2 kl + ku + 1` entries). The last `U`
+    /// steps, where the band is cut off by the matrix end, take the general step.
+    fn factor_fixed<const KL: usize, const U: usize, const W: usize>(&mut self) -> bool {
+        let n = self.n;
+        debug_assert!(self.kl == KL && self.kl + self.ku == U && self.w == W);
+        let full = n.saturating_sub(U);
+        for k in 0..full {
+            let (head, tail) = self.a.split_at_mut((k + 1) * W);
+            let prow = &mut head[k * W..];
+            // Row `k + 1 + d` holds column `k` at offset `KL - 1 - d`.
+            let mut p = 0;
+            let mut best = prow[KL].abs();
+            for (d, row) in tail.chunks_exact(W).take(KL).enumerate() {
+                let v = row[KL - 1 - d].abs();
                 if v > best {
                     best = v;
-                    p = i;
+                    p = d + 1;
                 }
             }
             if !(best > 0.0 && best.is_finite()) {
                 return false;
             }
-            self.piv[k] = p;
-            let rk = k * w + KL;
-            if p != k {
-                let rp = p * w + KL + k - p;
-                for d in 0..len {
-                    self.a.swap(rk + d, rp + d);
+            self.piv[k] = k + p;
+            if p != 0 {
+                let other = &mut tail[(p - 1) * W..p * W];
+                for d in 0..=U {
+                    core::mem::swap(&mut prow[KL + d], &mut other[KL - p + d]);
                 }
             }
-            let inv = 1.0 / self.a[rk];
-            for i in k + 1..=imax {
-                let ri = i * w + KL + k - i;
-                let f = self.a[ri] * inv;
-                self.a[ri] = f;
-                self.l[k * KL + (i - k - 1)] = f;
-                if f == 0.0 {
-                    continue;
-                }
-                let (head, tail) = self.a.split_at_mut(ri);
-                if len == U + 1 {
-                    let pivot_row: &[f64; U] = head[rk + 1..rk + 1 + U].try_into().unwrap();
-                    let row: &mut [f64; U] = (&mut tail[1..1 + U]).try_into().unwrap();
-                    for d in 0..U {
-                        row[d] -= f * pivot_row[d];
-                    }
-                } else {
-                    for (x, y) in tail[1..len].iter_mut().zip(&head[rk + 1..rk + len]) {
-                        *x -= f * y;
+            let inv = 1.0 / prow[KL];
+            let pivot: [f64; U] = prow[KL + 1..KL + 1 + U].try_into().unwrap();
+            let col = &mut self.l[k * KL..(k + 1) * KL];
+            for (d, row) in tail.chunks_exact_mut(W).take(KL).enumerate() {
+                let off = KL - 1 - d;
+                let f = row[off] * inv;
+                row[off] = f;
+                col[d] = f;
+                if f != 0.0 {
+                    for c in 0..U {
+                        row[off + 1 + c] -= f * pivot[c];
                     }
                 }
             }
         }
-        true
+        (full..n).all(|k| self.factor_step(k))
     }
 
     /// [`BandLu::factor`] for any bandwidths.
     fn factor_general(&mut self) -> bool {
+        (0..self.n).all(|k| self.factor_step(k))
+    }
+
+    /// Step `k` of the factorization: pivot search in column `k`, row swap, elimination
+    /// below. `false` if the pivot is zero or not finite.
+    fn factor_step(&mut self, k: usize) -> bool {
         let (n, kl, w) = (self.n, self.kl, self.w);
-        for k in 0..n {
-            let imax = (k + kl).min(n - 1);
-            let len = (k + kl + self.ku).min(n - 1) - k + 1;
-            let mut p = k;
-            let mut best = self.a[k * w + kl].abs();
-            for i in k + 1..=imax {
-                let v = self.a[i * w + kl + k - i].abs();
-                if v > best {
-                    best = v;
-                    p = i;
-                }
+        let imax = (k + kl).min(n - 1);
+        let len = (k + kl + self.ku).min(n - 1) - k + 1;
+        let mut p = k;
+        let mut best = self.a[k * w + kl].abs();
+        for i in k + 1..=imax {
+            let v = self.a[i * w + kl + k - i].abs();
+            if v > best {
+                best = v;
+                p = i;
             }
-            if !(best > 0.0 && best.is_finite()) {
-                return false;
+        }
+        if !(best > 0.0 && best.is_finite()) {
+            return false;
+        }
+        self.piv[k] = p;
+        // Row k's columns k.. start at offset kl; row i's at kl + k - i.
+        let rk = k * w + kl;
+        if p != k {
+            let rp = p * w + kl + k - p;
+            for d in 0..len {
+                self.a.swap(rk + d, rp + d);
             }
-            self.piv[k] = p;
-            // Row k's columns k.. start at offset kl; row i's at kl + k - i.
-            let rk = k * w + kl;
-            if p != k {
-                let rp = p * w + kl + k - p;
-                for d in 0..len {
-                    self.a.swap(rk + d, rp + d);
-                }
-            }
-            let inv = 1.0 / self.a[rk];
-            for i in k + 1..=imax {
-                let ri = i * w + kl + k - i;
-                let f = self.a[ri] * inv;
-                self.a[ri] = f;
-                self.l[k * kl + (i - k - 1)] = f;
-                if f != 0.0 {
-                    let (head, tail) = self.a.split_at_mut(ri);
-                    let pivot_row = &head[rk + 1..rk + len];
-                    for (x, y) in tail[1..len].iter_mut().zip(pivot_row) {
-                        *x -= f * y;
-                    }
+        }
+        let inv = 1.0 / self.a[rk];
+        for i in k + 1..=imax {
+            let ri = i * w + kl + k - i;
+            let f = self.a[ri] * inv;
+            self.a[ri] = f;
+            self.l[k * kl + (i - k - 1)] = f;
+            if f != 0.0 {
+                let (head, tail) = self.a.split_at_mut(ri);
+                let pivot_row = &head[rk + 1..rk + len];
+                for (x, y) in tail[1..len].iter_mut().zip(pivot_row) {
+                    *x -= f * y;
                 }
             }
         }
@@ -162,63 +160,64 @@ impl BandLu {
     pub(crate) fn solve(&self, b: &mut [f64]) {
         // The bandwidths of the κ/εκ solver's systems (2D and 3D) get unrolled kernels.
         match (self.kl, self.ku) {
-            (5, 5) => self.solve_fixed::<5, 10>(b),
-            (7, 7) => self.solve_fixed::<7, 14>(b),
+            (5, 5) => self.solve_fixed::<5, 10, 16>(b),
+            (7, 7) => self.solve_fixed::<7, 14, 22>(b),
             _ => self.solve_general(b),
         }
     }
 
     /// [`BandLu::solve`] with the bandwidths known at compile time: `KL` below the diagonal
-    /// and `U = kl + ku` above it in the factor `U`.
-    fn solve_fixed<const KL: usize, const U: usize>(&self, b: &mut [f64]) {
-        let (n, w) = (self.n, self.w);
-        debug_assert!(self.kl == KL && self.kl + self.ku == U);
+    /// and `U = kl + ku` above it in the factor `U`, rows of `W = 2 kl + ku + 1` entries.
+    fn solve_fixed<const KL: usize, const U: usize, const W: usize>(&self, b: &mut [f64]) {
+        let n = self.n;
+        debug_assert!(self.kl == KL && self.kl + self.ku == U && self.w == W);
         debug_assert_eq!(b.len(), n);
-        for k in 0..n {
-            let p = self.piv[k];
+        // Forward: `L y = P b`, one column of multipliers per step.
+        let full = n.saturating_sub(KL);
+        for (k, (col, &p)) in self.l.chunks_exact(KL).zip(&self.piv).enumerate() {
             if p != k {
                 b.swap(k, p);
             }
             let bk = b[k];
-            if k + KL < n {
-                let col: &[f64; KL] = self.l[k * KL..(k + 1) * KL].try_into().unwrap();
-                let below: &mut [f64; KL] = (&mut b[k + 1..k + 1 + KL]).try_into().unwrap();
+            if k < full {
+                let below = &mut b[k + 1..k + 1 + KL];
                 for i in 0..KL {
                     below[i] -= col[i] * bk;
                 }
             } else {
-                let m = n - 1 - k;
-                for (bi, li) in b[k + 1..].iter_mut().zip(&self.l[k * KL..k * KL + m]) {
+                for (bi, li) in b[k + 1..].iter_mut().zip(col) {
                     *bi -= li * bk;
                 }
             }
         }
-        for k in (0..n).rev() {
-            let rk = k * w + KL;
+        // Backward: `U x = y`; row `k` holds `U[k][k..=k+U]` from offset `KL`.
+        for (k, row) in self.a.chunks_exact(W).enumerate().rev() {
             let s = if k + U < n {
-                let row: &[f64; U] = self.a[rk + 1..rk + 1 + U].try_into().unwrap();
-                let x: &[f64; U] = b[k + 1..k + 1 + U].try_into().unwrap();
+                let x = &b[k + 1..k + 1 + U];
                 // `x[0]` was solved for just before: its product is added last, so the
                 // chain from one row's solution to the next is one multiply-add, and the
                 // rest (two partial sums) runs ahead.
                 let (mut s0, mut s1) = (0.0, 0.0);
-                for i in (1..U).step_by(2) {
-                    s0 += row[i] * x[i];
-                    if i + 1 < U {
-                        s1 += row[i + 1] * x[i + 1];
-                    }
+                let mut i = 1;
+                while i + 1 < U {
+                    s0 += row[KL + 1 + i] * x[i];
+                    s1 += row[KL + 2 + i] * x[i + 1];
+                    i += 2;
                 }
-                (s0 + s1) + row[0] * x[0]
+                if i < U {
+                    s0 += row[KL + 1 + i] * x[i];
+                }
+                (s0 + s1) + row[KL + 1] * x[0]
             } else {
-                let len = n - 1 - k;
-                self.a[rk + 1..rk + 1 + len]
+                row[KL + 1..]
                     .iter()
                     .zip(&b[k + 1..])
+                    .rev()
                     .map(|(a, x)| a * x)
                     .sum()
             };
             // The reciprocal does not depend on `b`: it is computed off the critical path.
-            b[k] = (b[k] - s) * (1.0 / self.a[rk]);
+            b[k] = (b[k] - s) * (1.0 / row[KL]);
         }
     }
 
