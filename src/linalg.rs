@@ -517,9 +517,26 @@ impl BorderedLu {
             xb[r] -= v * xi[c];
         }
         self.s.solve(xb);
-        if self.nb > 0 {
-            for (x, y) in xi.iter_mut().zip(self.ib.chunks_exact(self.nb)) {
-                *x -= y.iter().zip(xb.iter()).map(|(y, b)| y * b).sum::<f64>();
+        /// `x_I -= (A_II⁻¹ A_IB) x_B`, with the border size known at compile time.
+        fn back<const NB: usize>(xi: &mut [f64], ib: &[f64], xb: &[f64]) {
+            let xb: &[f64; NB] = xb.try_into().unwrap();
+            for (x, y) in xi.iter_mut().zip(ib.chunks_exact(NB)) {
+                let mut s = 0.0;
+                for r in 0..NB {
+                    s += y[r] * xb[r];
+                }
+                *x -= s;
+            }
+        }
+        // The border sizes of the κ/εκ systems: two blocks of 3 (2D) or 4 (3D) unknowns.
+        match self.nb {
+            0 => {}
+            6 => back::<6>(xi, &self.ib, xb),
+            8 => back::<8>(xi, &self.ib, xb),
+            nb => {
+                for (x, y) in xi.iter_mut().zip(self.ib.chunks_exact(nb)) {
+                    *x -= y.iter().zip(xb.iter()).map(|(y, b)| y * b).sum::<f64>();
+                }
             }
         }
     }
