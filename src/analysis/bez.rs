@@ -500,18 +500,23 @@ impl Bez {
         max_len2(&h1[..n1])
     }
 
-    /// Does the first hodograph lie strictly on one side of a plane through the origin (tested
-    /// for the normals `r′(0)`, `r′(1)` and their sum)? Then `r′` never vanishes.
+    /// Does the first hodograph lie on one side of a plane through the origin, farther from it
+    /// than the stall tolerance (tested for the normals `r′(0)`, `r′(1)` and their sum)? Then
+    /// `|r′| > STALL_TOL · max|h_i|` everywhere: no stall. The margin keeps this consistent with
+    /// [`is_stall_with`](Self::is_stall_with): a hodograph end within rounding of the origin
+    /// (a cusp at a joint of a spline) is a stall even if it lies on the positive side.
     fn hodograph_excludes_origin(&self) -> bool {
         let (h1, n1) = hodograph(self.points());
         let h = &h1[..n1];
         if h.is_empty() {
             return false;
         }
+        let margin = STALL_TOL * max_len2(h).sqrt();
         let (first, last) = (h[0], h[n1 - 1]);
-        [first, last, first + last]
-            .iter()
-            .any(|u| h.iter().all(|d| d.dot(*u) > 0.0))
+        [first, last, first + last].iter().any(|u| {
+            let len = u.length();
+            h.iter().all(|d| d.dot(*u) > margin * len)
+        })
     }
 
     /// Is `r′(t)` zero to within [`STALL_TOL`]?

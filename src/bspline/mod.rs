@@ -71,8 +71,25 @@ const CONTROL_REACH: f64 = 1.5 + 1e-9;
 /// eqs. 15–16; 3D: seed 002 eq. 13, degree ≤ 7) plus both segment ends are the candidates;
 /// the maximum of |κ| is returned with **every** global parameter where it is attained, ties
 /// counted within a relative [`BSplineCurvatureMax::TIE_TOLERANCE`] (1e-12): symmetric data
-/// has several equal maxima. [`BSpline::curvature`] is Algorithm 2, the curvature at any
-/// global parameter.
+/// has several equal maxima. The value is |κ| re-measured at the reported global parameter
+/// (the one [`BSpline::curvature`] sees), so it is attained exactly where it is reported.
+/// [`BSpline::curvature`] is Algorithm 2, the curvature at any global parameter.
+///
+/// **Cusps.** Where `r′ = 0` (to within [`STALL_TOLERANCE`](crate::analysis::STALL_TOLERANCE)
+/// of the segment's hodograph) and |κ| grows without bound next to it, the maximum is
+/// [`f64::INFINITY`], reported at the cusp parameters (where `curvature` returns 0 by
+/// convention). Data force such cusps: a closed spline through `A, B, A, C` (a point
+/// repeated two places apart) has `b₀ = b₂` exactly (subtract rows 0 and 2 of the system), so
+/// `r′(1) = (b₂ − b₀)/2 = 0` and the curve turns back at `B`; a closed spline that is its own
+/// reversal (`s_k = s_{−k}`) folds back at its two fixed points. In floating point `r′` is a
+/// few units in the last place there rather than 0, which the stall tolerance absorbs. Near
+/// (not exact) cusps have a finite, possibly huge maximum.
+///
+/// **Precision.** The points and control points are kept in the normalized frame as solved
+/// there, and the curvature is computed from those: mapping the user control points back
+/// would round them to the magnitude of the coordinates, which for points far from the origin
+/// relative to their extent (1e-7 apart at 1e4, say) is most of their precision, and the two
+/// segments at a joint would then disagree on |κ| there.
 ///
 /// Running the root finder on every segment costs a few microseconds each, so segments are
 /// first screened by cheap bounds (`curvature_bounds`): the curvature at the joints is a lower
@@ -126,6 +143,12 @@ pub struct BSpline<P = Point> {
     points: Vec<P>,
     /// The control points `b_k`.
     control: Vec<P>,
+    /// The points `s_k` in the normalized frame (see [`local_segment`](Self::local_segment)).
+    local_points: Vec<P>,
+    /// The control points `b_k` in the normalized frame, as solved there: mapping the user
+    /// control points back would round them to the magnitude of the coordinates, which for
+    /// points far from the origin relative to their extent is most of their precision.
+    local_control: Vec<P>,
     /// Centre of the points' bounding box.
     center: P,
     /// Larger side of the points' bounding box (positive).
@@ -165,20 +188,17 @@ mod sealed {
         /// The exact segment type.
         type Seg: CurvatureAnalysis;
 
-        /// Validate `points`, then replace `control` by the control points (user
-        /// coordinates); returns the centre and the size of the normalized frame. `control`
-        /// is untouched on error.
+        /// Validate `points`, then replace `frame`'s vectors by the control points (user
+        /// coordinates) and the points and control points in the normalized frame; returns the
+        /// centre and the size of the normalized frame. `frame` is untouched on error.
         fn interpolate(
             points: &[Self],
             closed: bool,
-            control: &mut Vec<Self>,
+            frame: Frames<'_, Self>,
         ) -> Result<(Self, f64), Error>;
 
         /// `wa a + wb b`.
         fn combine(a: Self, wa: f64, b: Self, wb: f64) -> Self;
-
-        /// `(self − center) / size`.
-        fn to_local(self, center: Self, size: f64) -> Self;
 
         /// The cubic segment with these control points.
         fn segment(p: [Self; 4]) -> Self::Seg;
@@ -209,21 +229,15 @@ macro_rules! impl_sealed {
             fn interpolate(
                 points: &[Self],
                 closed: bool,
-                control: &mut Vec<Self>,
+                frame: Frames<'_, Self>,
             ) -> Result<(Self, f64), Error> {
-                interpolate::<$p, $d>(points, closed, control)
+                interpolate::<$p, $d>(points, closed, frame)
             }
 
             #[inline]
             fn combine(a: Self, wa: f64, b: Self, wb: f64) -> Self {
                 let (a, b) = (a.coords(), b.coords());
                 <$p>::from_coords(core::array::from_fn(|k| wa * a[k] + wb * b[k]))
-            }
-
-            #[inline]
-            fn to_local(self, center: Self, size: f64) -> Self {
-                let (p, c) = (self.coords(), center.coords());
-                <$p>::from_coords(core::array::from_fn(|k| (p[k] - c[k]) / size))
             }
 
             #[inline]
@@ -413,16 +427,29 @@ fn curvature_bounds<const D: usize>(p: [[f64; D]; 4]) -> CurvatureBounds {
     }
 }
 
+/// The vectors [`interpolate`] fills: the control points in user coordinates, and the points
+/// and control points in the normalized frame.
+pub struct Frames<'a, P> {
+    control: &'a mut Vec<P>,
+    local_points: &'a mut Vec<P>,
+    local_control: &'a mut Vec<P>,
+}
+
 /// Validate `points`, solve for the control points in the normalized frame and map them back.
 ///
-/// Four sweeps over the points: bounds, repeated points, and the two of the solver, which
-/// reads the right-hand sides straight from the points and writes the control points in user
-/// coordinates (the solver's vectors are points of the normalized frame until then).
+/// Five sweeps over the points: bounds, repeated points (writing the normalized points), the
+/// two of the solver, which reads the right-hand sides from the normalized points and writes
+/// the normalized control points, and the map of those to user coordinates.
 fn interpolate<P: Coords<D> + Lin, const D: usize>(
     points: &[P],
     closed: bool,
-    control: &mut Vec<P>,
+    frame: Frames<'_, P>,
 ) -> Result<(P, f64), Error> {
+    let Frames {
+        control,
+        local_points,
+        local_control,
+    } = frame;
     let m = points.len();
     let (kind, needed) = if closed {
         ("a closed B-spline", 3)
@@ -496,12 +523,15 @@ fn interpolate<P: Coords<D> + Lin, const D: usize>(
             next: 0,
         });
     }
+    local_points.clear();
+    local_points.extend(points.iter().map(|&p| P::from_coords(local(p))));
+    let lp: &[P] = local_points;
     // Unknowns: all b_k (closed), or b_1 … b_{n−1} with b_0 = s_0, b_n = s_n moved to the
     // right-hand side (open).
     let (offset, unknowns) = if closed { (0, m) } else { (1, m - 2) };
-    let (first, last) = (local(points[0]), local(points[m - 1]));
+    let (first, last) = (lp[0].coords(), lp[m - 1].coords());
     let rhs = |i: usize| -> P {
-        let mut d = local(points[i + offset]).map(|x| 6.0 * x);
+        let mut d = lp[i + offset].coords().map(|x| 6.0 * x);
         if !closed {
             for k in 0..D {
                 if i == 0 {
@@ -518,15 +548,23 @@ fn interpolate<P: Coords<D> + Lin, const D: usize>(
         let c = x.coords();
         P::from_coords(core::array::from_fn(|k| c[k] * size + center[k]))
     };
-    control.clear();
-    control.reserve(m);
+    local_control.clear();
+    local_control.reserve(m);
     if !closed {
-        control.push(points[0]);
+        local_control.push(lp[0]);
     }
-    let solved = solve_symmetric_toeplitz_into(DIAGONAL, closed, unknowns, rhs, control, to_user);
+    let solved =
+        solve_symmetric_toeplitz_into(DIAGONAL, closed, unknowns, rhs, local_control, |x| x);
     debug_assert!(solved, "the diagonal is a valid constant");
     if !closed {
-        control.push(points[m - 1]);
+        local_control.push(lp[m - 1]);
+    }
+    control.clear();
+    control.extend(local_control.iter().map(|&b| to_user(b)));
+    if !closed {
+        // The ends are the data points themselves, exactly.
+        control[0] = points[0];
+        control[m - 1] = points[m - 1];
     }
     Ok((P::from_coords(center), size))
 }
@@ -543,12 +581,20 @@ impl<P: BSplinePoint> BSpline<P> {
     /// [`Error::ExtentOverflow`] (the extent of the points is not a finite `f64`, or the
     /// control points could overflow: a coordinate within 1.5 extents of `±f64::MAX`).
     pub fn new(points: &[P], closed: bool) -> Result<Self, Error> {
-        let mut control = Vec::new();
-        let (center, size) = P::interpolate(points, closed, &mut control)?;
+        let (mut control, mut local_points, mut local_control) =
+            (Vec::new(), Vec::new(), Vec::new());
+        let frame = Frames {
+            control: &mut control,
+            local_points: &mut local_points,
+            local_control: &mut local_control,
+        };
+        let (center, size) = P::interpolate(points, closed, frame)?;
         Ok(BSpline {
             closed,
             points: points.to_vec(),
             control,
+            local_points,
+            local_control,
             center,
             size,
         })
@@ -558,7 +604,12 @@ impl<P: BSplinePoint> BSpline<P> {
     /// [`new`](Self::new) without allocating when the point count does not grow (for
     /// interactive editing, or many splines in a row). On error the spline is unchanged.
     pub fn set_points(&mut self, points: &[P], closed: bool) -> Result<(), Error> {
-        let (center, size) = P::interpolate(points, closed, &mut self.control)?;
+        let frame = Frames {
+            control: &mut self.control,
+            local_points: &mut self.local_points,
+            local_control: &mut self.local_control,
+        };
+        let (center, size) = P::interpolate(points, closed, frame)?;
         self.points.clear();
         self.points.extend_from_slice(points);
         self.closed = closed;
@@ -630,10 +681,17 @@ impl<P: BSplinePoint> BSpline<P> {
         P::segment(self.local_points(i))
     }
 
-    /// The control points of segment `i` in the normalized frame.
+    /// The control points of segment `i` in the normalized frame, from the points and control
+    /// points solved there (the same formula as [`segment_points`](Self::segment_points)).
     fn local_points(&self, i: usize) -> [P; 4] {
-        let pts = self.segment_points(i).expect("segment index in range");
-        pts.map(|p| p.to_local(self.center, self.size))
+        let j = (i + 1) % self.points.len();
+        let (b0, b1) = (self.local_control[i], self.local_control[j]);
+        [
+            self.local_points[i],
+            P::combine(b0, 2.0 / 3.0, b1, 1.0 / 3.0),
+            P::combine(b0, 1.0 / 3.0, b1, 2.0 / 3.0),
+            self.local_points[j],
+        ]
     }
 
     /// The segment containing the global parameter `t` and the parameter in `[0, 1]` on it
@@ -682,11 +740,16 @@ impl<P: BSplinePoint> BSpline<P> {
     /// normalized frame, so it does not overflow for huge or tiny coordinates. NaN for a NaN
     /// `t`; 0 where `r′ = 0`.
     pub fn curvature(&self, t: f64) -> f64 {
+        self.local_curvature(t) / self.size
+    }
+
+    /// The curvature at global parameter `t` in the normalized frame.
+    fn local_curvature(&self, t: f64) -> f64 {
         let (i, u) = self.locate(t);
         if u.is_nan() {
             return f64::NAN;
         }
-        CurvatureAnalysis::curvature(&self.local_segment(i), u) / self.size
+        CurvatureAnalysis::curvature(&self.local_segment(i), u)
     }
 
     /// The maximum of |κ| and every global parameter where it is attained (seed 002,
@@ -729,21 +792,24 @@ impl<P: BSplinePoint> BSpline<P> {
             if m.value < best * tie {
                 continue;
             }
-            if m.value > best {
-                best = m.value;
-                cands.retain(|c| c.1 >= best * tie);
-            }
             for &u in &m.params {
                 // The analysis reports parameters within its own (looser) tolerance of the
-                // segment's maximum: re-measure each one. At a cusp, or where r′ = 0 with a
-                // finite limit, the value is the analysis' limit, not the 0 of `curvature`.
-                let k = CurvatureAnalysis::curvature(&seg, u).abs();
+                // segment's maximum: re-measure each one where it is reported, at the global
+                // parameter, so that the value is |κ| there exactly. At a cusp, or where
+                // r′ = 0 with a finite limit, the value is the analysis' limit, not the 0 of
+                // `curvature`.
+                let t = i as f64 + u;
+                let k = self.local_curvature(t).abs();
                 let v = if m.value.is_infinite() || (k == 0.0 && m.value > 0.0) {
                     m.value
                 } else {
                     k
                 };
-                cands.push((i as f64 + u, v));
+                if v > best {
+                    best = v;
+                    cands.retain(|c| c.1 >= best * tie);
+                }
+                cands.push((t, v));
             }
         }
         let end = count as f64;

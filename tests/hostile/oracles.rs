@@ -530,11 +530,14 @@ fn check_bspline_parts<const D: usize>(
             3.0 * ((1.0 - t) * (1.0 - t) * a + 2.0 * (1.0 - t) * t * b + t * t * c)
         })
     };
+    // Second differences as differences of differences: `s₂ − 2s₁ + s₀` overflows when the
+    // coordinates are within a factor 2 of f64::MAX (2s₁ = ±∞) although the differences, at
+    // most a few extents, are finite; this form is exact to the same rounding otherwise.
     let d2 = |s: &[[f64; D]; 4], t: f64| -> [f64; D] {
         core::array::from_fn(|k| {
             let (a, b) = (
-                s[2][k] - 2.0 * s[1][k] + s[0][k],
-                s[3][k] - 2.0 * s[2][k] + s[1][k],
+                (s[2][k] - s[1][k]) - (s[1][k] - s[0][k]),
+                (s[3][k] - s[2][k]) - (s[2][k] - s[1][k]),
             );
             6.0 * ((1.0 - t) * a + t * b)
         })
