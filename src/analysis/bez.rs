@@ -608,6 +608,33 @@ impl Bez {
         Some(out)
     }
 
+    /// Is the segment straight: fewer than three control points, all coincident, or
+    /// `r′ × r″` below [`STRAIGHT_TOL`] (collinear to within rounding)? Then κ ≡ 0 by
+    /// convention, whatever rounding noise [`curvature`](Self::curvature) computes.
+    pub(crate) fn is_straight(&self) -> bool {
+        self.curved().is_none()
+    }
+
+    /// For a segment that is not straight (see [`is_straight`](Self::is_straight)), the
+    /// segment [`normalized`](Self::normalized) and the power form of its `r′`.
+    fn curved(&self) -> Option<(Bez, VPol)> {
+        if self.n < 2 {
+            return None;
+        }
+        let b = self.normalized()?;
+        let n = self.n;
+        let (h1, n1) = hodograph(b.points());
+        let (h2, n2) = hodograph(&h1[..n1]);
+        let h2_scale = max_len2(&h2[..n2]).sqrt();
+        let r1 = bernstein_to_power(&h1[..n1]);
+        // r′ × r″: the t^{2n-3} coefficient cancels exactly (parallel leading terms).
+        let c = r1.cross(&r1.deriv()).truncated(2 * n - 3);
+        if c.max_abs() <= STRAIGHT_TOL * h2_scale || c.max_abs().is_nan() {
+            return None;
+        }
+        Some((b, r1))
+    }
+
     /// The critical points of `κ²` in `(0, 1)`.
     ///
     /// 2D: `stationary` are the sign changes of `W = (r′×r‴)|r′|² − 3(r′×r″)(r′·r″)`
@@ -621,22 +648,10 @@ impl Bez {
             inflections: Buf::default(),
             straight: true,
         };
-        if self.n < 2 {
-            return out;
-        }
-        let Some(b) = self.normalized() else {
+        let Some((b, r1)) = self.curved() else {
             return out;
         };
         let n = self.n;
-        let (h1, n1) = hodograph(b.points());
-        let (h2, n2) = hodograph(&h1[..n1]);
-        let h2_scale = max_len2(&h2[..n2]).sqrt();
-        let r1 = bernstein_to_power(&h1[..n1]);
-        // r′ × r″: the t^{2n-3} coefficient cancels exactly (parallel leading terms).
-        let c = r1.cross(&r1.deriv()).truncated(2 * n - 3);
-        if c.max_abs() <= STRAIGHT_TOL * h2_scale || c.max_abs().is_nan() {
-            return out;
-        }
         out.straight = false;
 
         // Near a near-stall (|r′| tiny) the stationarity polynomials take values far below the

@@ -20,6 +20,11 @@ use crate::{Coords, Error, Point3};
 /// their bounding box) are repeated.
 const COINCIDENT: f64 = 1e-12;
 
+/// The control points are kept in the normalized frame too when a coordinate of the centre of
+/// the points' bounding box exceeds this many drawing sizes: mapping them to user coordinates
+/// and back then loses more than about `(2 · 3/2 + FAR) ε` of the drawing size.
+const FAR: f64 = 2.0;
+
 /// The diagonal of the interpolation system `b_{k−1} + 4 b_k + b_{k+1} = 6 s_k`.
 const DIAGONAL: f64 = 4.0;
 
@@ -85,11 +90,13 @@ const CONTROL_REACH: f64 = 1.5 + 1e-9;
 /// few units in the last place there rather than 0, which the stall tolerance absorbs. Near
 /// (not exact) cusps have a finite, possibly huge maximum.
 ///
-/// **Precision.** The points and control points are kept in the normalized frame as solved
-/// there, and the curvature is computed from those: mapping the user control points back
-/// would round them to the magnitude of the coordinates, which for points far from the origin
-/// relative to their extent (1e-7 apart at 1e4, say) is most of their precision, and the two
-/// segments at a joint would then disagree on |κ| there.
+/// **Precision.** For points far from the origin relative to their extent (the centre of their
+/// bounding box more than 2 extents away) the control points are also kept in the normalized
+/// frame as solved there, and the curvature is computed from those: mapping the user control
+/// points back would round them to the magnitude of the coordinates, which for points 1e-7
+/// apart at 1e4, say, is most of their precision, and the two segments at a joint would then
+/// disagree on |κ| there. Near the origin the round trip costs a few units in the last place
+/// and the extra memory is not spent.
 ///
 /// Running the root finder on every segment costs a few microseconds each, so segments are
 /// first screened by cheap bounds (`curvature_bounds`): the curvature at the joints is a lower
@@ -143,11 +150,12 @@ pub struct BSpline<P = Point> {
     points: Vec<P>,
     /// The control points `b_k`.
     control: Vec<P>,
-    /// The points `s_k` in the normalized frame (see [`local_segment`](Self::local_segment)).
-    local_points: Vec<P>,
-    /// The control points `b_k` in the normalized frame, as solved there: mapping the user
-    /// control points back would round them to the magnitude of the coordinates, which for
-    /// points far from the origin relative to their extent is most of their precision.
+    /// The control points `b_k` in the normalized frame, as solved there, when the points lie
+    /// far from the origin relative to their extent ([`FAR`]); empty otherwise. Mapping the
+    /// user control points back to the normalized frame rounds them to the magnitude of the
+    /// coordinates, which for such points is much of their precision (most of it for points
+    /// 1e-7 apart at 1e4); near the origin it costs a few units in the last place and no
+    /// memory.
     local_control: Vec<P>,
     /// Centre of the points' bounding box.
     center: P,
@@ -188,13 +196,15 @@ mod sealed {
         /// The exact segment type.
         type Seg: CurvatureAnalysis;
 
-        /// Validate `points`, then replace `frame`'s vectors by the control points (user
-        /// coordinates) and the points and control points in the normalized frame; returns the
-        /// centre and the size of the normalized frame. `frame` is untouched on error.
+        /// Validate `points`, then replace `control` by the control points (user coordinates)
+        /// and `local_control` by the control points in the normalized frame if the points are
+        /// [`FAR`] from the origin (else clear it); returns the centre and the size of the
+        /// normalized frame. The vectors are untouched on error.
         fn interpolate(
             points: &[Self],
             closed: bool,
-            frame: Frames<'_, Self>,
+            control: &mut Vec<Self>,
+            local_control: &mut Vec<Self>,
         ) -> Result<(Self, f64), Error>;
 
         /// `wa a + wb b`.
@@ -205,6 +215,9 @@ mod sealed {
 
         /// Arc length of a segment.
         fn arclen(seg: &Self::Seg, accuracy: f64) -> f64;
+
+        /// `(self − center) / size`.
+        fn to_local(self, center: Self, size: f64) -> Self;
 
         /// A point with every coordinate NaN.
         fn nan() -> Self;
@@ -229,9 +242,10 @@ macro_rules! impl_sealed {
             fn interpolate(
                 points: &[Self],
                 closed: bool,
-                frame: Frames<'_, Self>,
+                control: &mut Vec<Self>,
+                local_control: &mut Vec<Self>,
             ) -> Result<(Self, f64), Error> {
-                interpolate::<$p, $d>(points, closed, frame)
+                interpolate::<$p, $d>(points, closed, control, local_control)
             }
 
             #[inline]
@@ -247,6 +261,12 @@ macro_rules! impl_sealed {
 
             fn arclen($g: &$seg, $acc: f64) -> f64 {
                 $arclen
+            }
+
+            #[inline]
+            fn to_local(self, center: Self, size: f64) -> Self {
+                let (p, c) = (self.coords(), center.coords());
+                <$p>::from_coords(core::array::from_fn(|k| (p[k] - c[k]) / size))
             }
 
             fn nan() -> Self {
@@ -393,7 +413,13 @@ fn curvature_bounds<const D: usize>(p: [[f64; D]; 4]) -> CurvatureBounds {
     );
     let c1: [f64; 3] = core::array::from_fn(|k| (2.0 * h1g0[k] + h0g1[k]) / 3.0);
     let c2: [f64; 3] = core::array::from_fn(|k| (h2g0[k] + 2.0 * h1g1[k]) / 3.0);
-    let num = norm3(c0).max(norm3(c1)).max(norm3(c2)).max(norm3(c3));
+    // Plus the rounding of the cross products (a few ε |h| |g| each): for a segment
+    // collinear to within rounding they are that rounding, and the bound must still hold for
+    // the curvature computed from the same control points.
+    let hmax = h.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
+    let gmax = g.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
+    let num =
+        norm3(c0).max(norm3(c1)).max(norm3(c2)).max(norm3(c3)) + 16.0 * f64::EPSILON * hmax * gmax;
     let kappa_end = |c: [f64; 3], v: [f64; D]| {
         let l = dot(v, v).sqrt();
         let k = norm3(c) / (l * l * l);
@@ -427,29 +453,19 @@ fn curvature_bounds<const D: usize>(p: [[f64; D]; 4]) -> CurvatureBounds {
     }
 }
 
-/// The vectors [`interpolate`] fills: the control points in user coordinates, and the points
-/// and control points in the normalized frame.
-pub struct Frames<'a, P> {
-    control: &'a mut Vec<P>,
-    local_points: &'a mut Vec<P>,
-    local_control: &'a mut Vec<P>,
-}
-
 /// Validate `points`, solve for the control points in the normalized frame and map them back.
 ///
-/// Five sweeps over the points: bounds, repeated points (writing the normalized points), the
-/// two of the solver, which reads the right-hand sides from the normalized points and writes
-/// the normalized control points, and the map of those to user coordinates.
+/// Four sweeps over the points: bounds, repeated points, and the two of the solver, which
+/// reads the right-hand sides straight from the points and writes the control points in user
+/// coordinates (the solver's vectors are points of the normalized frame until then). For
+/// points [`FAR`] from the origin the solver writes the normalized control points, and a fifth
+/// sweep maps them to user coordinates.
 fn interpolate<P: Coords<D> + Lin, const D: usize>(
     points: &[P],
     closed: bool,
-    frame: Frames<'_, P>,
+    control: &mut Vec<P>,
+    local_control: &mut Vec<P>,
 ) -> Result<(P, f64), Error> {
-    let Frames {
-        control,
-        local_points,
-        local_control,
-    } = frame;
     let m = points.len();
     let (kind, needed) = if closed {
         ("a closed B-spline", 3)
@@ -523,15 +539,12 @@ fn interpolate<P: Coords<D> + Lin, const D: usize>(
             next: 0,
         });
     }
-    local_points.clear();
-    local_points.extend(points.iter().map(|&p| P::from_coords(local(p))));
-    let lp: &[P] = local_points;
     // Unknowns: all b_k (closed), or b_1 … b_{n−1} with b_0 = s_0, b_n = s_n moved to the
     // right-hand side (open).
     let (offset, unknowns) = if closed { (0, m) } else { (1, m - 2) };
-    let (first, last) = (lp[0].coords(), lp[m - 1].coords());
+    let (first, last) = (local(points[0]), local(points[m - 1]));
     let rhs = |i: usize| -> P {
-        let mut d = lp[i + offset].coords().map(|x| 6.0 * x);
+        let mut d = local(points[i + offset]).map(|x| 6.0 * x);
         if !closed {
             for k in 0..D {
                 if i == 0 {
@@ -548,23 +561,37 @@ fn interpolate<P: Coords<D> + Lin, const D: usize>(
         let c = x.coords();
         P::from_coords(core::array::from_fn(|k| c[k] * size + center[k]))
     };
+    let far = center.iter().any(|c| c.abs() > FAR * size);
     local_control.clear();
-    local_control.reserve(m);
-    if !closed {
-        local_control.push(lp[0]);
-    }
-    let solved =
-        solve_symmetric_toeplitz_into(DIAGONAL, closed, unknowns, rhs, local_control, |x| x);
-    debug_assert!(solved, "the diagonal is a valid constant");
-    if !closed {
-        local_control.push(lp[m - 1]);
-    }
     control.clear();
-    control.extend(local_control.iter().map(|&b| to_user(b)));
-    if !closed {
-        // The ends are the data points themselves, exactly.
-        control[0] = points[0];
-        control[m - 1] = points[m - 1];
+    control.reserve(m);
+    if far {
+        local_control.reserve(m);
+        if !closed {
+            local_control.push(P::from_coords(first));
+        }
+        let solved =
+            solve_symmetric_toeplitz_into(DIAGONAL, closed, unknowns, rhs, local_control, |x| x);
+        debug_assert!(solved, "the diagonal is a valid constant");
+        if !closed {
+            local_control.push(P::from_coords(last));
+        }
+        control.extend(local_control.iter().map(|&b| to_user(b)));
+        if !closed {
+            // The ends are the data points themselves, exactly.
+            control[0] = points[0];
+            control[m - 1] = points[m - 1];
+        }
+    } else {
+        if !closed {
+            control.push(points[0]);
+        }
+        let solved =
+            solve_symmetric_toeplitz_into(DIAGONAL, closed, unknowns, rhs, control, to_user);
+        debug_assert!(solved, "the diagonal is a valid constant");
+        if !closed {
+            control.push(points[m - 1]);
+        }
     }
     Ok((P::from_coords(center), size))
 }
@@ -581,19 +608,12 @@ impl<P: BSplinePoint> BSpline<P> {
     /// [`Error::ExtentOverflow`] (the extent of the points is not a finite `f64`, or the
     /// control points could overflow: a coordinate within 1.5 extents of `±f64::MAX`).
     pub fn new(points: &[P], closed: bool) -> Result<Self, Error> {
-        let (mut control, mut local_points, mut local_control) =
-            (Vec::new(), Vec::new(), Vec::new());
-        let frame = Frames {
-            control: &mut control,
-            local_points: &mut local_points,
-            local_control: &mut local_control,
-        };
-        let (center, size) = P::interpolate(points, closed, frame)?;
+        let (mut control, mut local_control) = (Vec::new(), Vec::new());
+        let (center, size) = P::interpolate(points, closed, &mut control, &mut local_control)?;
         Ok(BSpline {
             closed,
             points: points.to_vec(),
             control,
-            local_points,
             local_control,
             center,
             size,
@@ -604,12 +624,8 @@ impl<P: BSplinePoint> BSpline<P> {
     /// [`new`](Self::new) without allocating when the point count does not grow (for
     /// interactive editing, or many splines in a row). On error the spline is unchanged.
     pub fn set_points(&mut self, points: &[P], closed: bool) -> Result<(), Error> {
-        let frame = Frames {
-            control: &mut self.control,
-            local_points: &mut self.local_points,
-            local_control: &mut self.local_control,
-        };
-        let (center, size) = P::interpolate(points, closed, frame)?;
+        let (center, size) =
+            P::interpolate(points, closed, &mut self.control, &mut self.local_control)?;
         self.points.clear();
         self.points.extend_from_slice(points);
         self.closed = closed;
@@ -681,16 +697,22 @@ impl<P: BSplinePoint> BSpline<P> {
         P::segment(self.local_points(i))
     }
 
-    /// The control points of segment `i` in the normalized frame, from the points and control
-    /// points solved there (the same formula as [`segment_points`](Self::segment_points)).
+    /// The control points of segment `i` in the normalized frame (the same formula as
+    /// [`segment_points`](Self::segment_points)), from the normalized control points when they
+    /// are kept ([`FAR`]).
     fn local_points(&self, i: usize) -> [P; 4] {
         let j = (i + 1) % self.points.len();
-        let (b0, b1) = (self.local_control[i], self.local_control[j]);
+        let local = |p: P| p.to_local(self.center, self.size);
+        let (b0, b1) = if self.local_control.is_empty() {
+            (local(self.control[i]), local(self.control[j]))
+        } else {
+            (self.local_control[i], self.local_control[j])
+        };
         [
-            self.local_points[i],
+            local(self.points[i]),
             P::combine(b0, 2.0 / 3.0, b1, 1.0 / 3.0),
             P::combine(b0, 1.0 / 3.0, b1, 2.0 / 3.0),
-            self.local_points[j],
+            local(self.points[j]),
         ]
     }
 
@@ -738,7 +760,8 @@ impl<P: BSplinePoint> BSpline<P> {
     /// The curvature at global parameter `t` (seed 002, Algorithm 2): signed in 2D (positive
     /// for left turns, `(x′y″ − y′x″)/|r′|³`), `|r′ × r″|/|r′|³` in 3D. Computed in the
     /// normalized frame, so it does not overflow for huge or tiny coordinates. NaN for a NaN
-    /// `t`; 0 where `r′ = 0`.
+    /// `t`; 0 where `r′ = 0` and on segments whose control points are collinear to within
+    /// rounding (straight, see [`analysis`](crate::analysis)).
     pub fn curvature(&self, t: f64) -> f64 {
         self.local_curvature(t) / self.size
     }
@@ -749,7 +772,13 @@ impl<P: BSplinePoint> BSpline<P> {
         if u.is_nan() {
             return f64::NAN;
         }
-        CurvatureAnalysis::curvature(&self.local_segment(i), u)
+        let seg = self.local_segment(i);
+        if crate::analysis::is_straight(&seg) {
+            // κ ≡ 0 on a segment straight to within rounding, as its maximum says; the noise
+            // of `r′ × r″` over a small `|r′|` (a straight reversal) is not curvature.
+            return 0.0;
+        }
+        CurvatureAnalysis::curvature(&seg, u)
     }
 
     /// The maximum of |κ| and every global parameter where it is attained (seed 002,
@@ -762,11 +791,27 @@ impl<P: BSplinePoint> BSpline<P> {
         // Cheap bounds first: |κ| at every joint is a lower bound of the maximum, and a
         // segment whose upper bound stays below it cannot attain it. The rest are analysed in
         // decreasing order of their bound, until the bound drops below the best value found.
+        //
+        // A segment straight to within rounding has κ ≡ 0 (its curvature is 0, see
+        // `curvature`): its bound is 0, and the values at the ends of a segment next to one
+        // are not counted as attained (at the joint `curvature` sees the straight one).
+        let straight: Vec<bool> = (0..count)
+            .map(|i| crate::analysis::is_straight(&self.local_segment(i)))
+            .collect();
+        let next_straight = |i: usize| {
+            i + 1 < count && straight[i + 1] || i + 1 == count && self.closed && straight[0]
+        };
         let mut bounds: Vec<(usize, f64)> = Vec::with_capacity(count);
         let mut lower = 0.0f64;
-        for i in 0..count {
+        for (i, &flat) in straight.iter().enumerate() {
+            if flat {
+                bounds.push((i, 0.0));
+                continue;
+            }
             let b = P::curvature_bounds(self.local_points(i), 1);
-            lower = lower.max(b.at_ends);
+            if !next_straight(i) {
+                lower = lower.max(b.at_ends);
+            }
             bounds.push((i, b.upper));
         }
         // The bounds are exact up to rounding; the margin absorbs it.
@@ -774,8 +819,13 @@ impl<P: BSplinePoint> BSpline<P> {
         bounds.retain(|b| !prunable(b.1, lower));
         // Tighter bounds (and more attained values) for the segments left, from pieces.
         for b in &mut bounds {
+            if straight[b.0] {
+                continue;
+            }
             let r = P::curvature_bounds(self.local_points(b.0), BOUND_PIECES);
-            lower = lower.max(r.at_ends);
+            if !next_straight(b.0) {
+                lower = lower.max(r.at_ends);
+            }
             b.1 = r.upper;
         }
         bounds.retain(|b| !prunable(b.1, lower));
@@ -799,6 +849,11 @@ impl<P: BSplinePoint> BSpline<P> {
                 // r′ = 0 with a finite limit, the value is the analysis' limit, not the 0 of
                 // `curvature`.
                 let t = i as f64 + u;
+                if !straight[i] && straight[self.locate(t).0] {
+                    // A joint with a straight segment, where `curvature` is 0 (not a maximum
+                    // of this curved one).
+                    continue;
+                }
                 let k = self.local_curvature(t).abs();
                 let v = if m.value.is_infinite() || (k == 0.0 && m.value > 0.0) {
                     m.value
