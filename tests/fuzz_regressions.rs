@@ -189,12 +189,11 @@ fn hermite_with_a_huge_turning_is_refused_fast() {
     assert!(h.solve(&Profile::clothoid()).is_ok());
 }
 
-/// `bspline` (found, not fixed): next to a cusp of a closed 3D spline (a point repeated two
-/// places apart), `max_curvature` reports 15.78 while |κ| reaches 2 400 and more near the
-/// joints (the cheap segment bounds prune segments whose maximum is unbounded). Left to the
-/// B-spline module; run with `--ignored` to see it.
+/// `bspline`: next to a cusp of a closed 3D spline (a point repeated two places apart),
+/// `max_curvature` reported 15.78 while |κ| reaches 2 400 and more near the joints. The
+/// closed system forces `r′ = 0` at t = 1 and 3 (see `fixbsp` below): the maximum is
+/// infinite there.
 #[test]
-#[ignore = "known: B-spline maximum next to a cusp (fuzz finding, not fixed yet)"]
 fn bspline_maximum_next_to_a_cusp() {
     let p = [
         Point3::new(0.1, 0.0, 0.0),
@@ -211,12 +210,268 @@ fn bspline_maximum_next_to_a_cusp() {
         ),
     ];
     let s = BSpline3::new(&p, true).unwrap();
-    let max = s.max_curvature().value;
+    let m = s.max_curvature();
+    assert_eq!(m.value, f64::INFINITY, "{m:?}");
+    assert!(
+        m.params.len() == 2 && (m.params[0] - 1.0).abs() < 1e-12,
+        "{m:?}"
+    );
+    assert!((m.params[1] - 3.0).abs() < 1e-12, "{m:?}");
+    let max = m.value;
     for k in 0..=4000 {
         let t = k as f64 / 1000.0;
         assert!(
             s.curvature(t).abs() <= max * (1.0 + 1e-6),
             "κ({t}) above {max}"
         );
+    }
+}
+
+/// The `bspline` and `cli_json` findings on the maximum curvature of B-splines.
+mod fixbsp {
+    use kappa::analysis::CurvatureAnalysis;
+    use kappa::{BSpline, BSpline3, Point3};
+    use kurbo::{CubicBez, Point};
+
+    /// The cusps are where `|r′|²` is least, found to within rounding.
+    fn near(params: &[f64], expected: &[f64]) {
+        assert_eq!(params.len(), expected.len(), "{params:?}");
+        for (t, e) in params.iter().zip(expected) {
+            assert!((t - e).abs() <= 1e-12, "{params:?}");
+        }
+    }
+
+    /// Checks that `|κ|` grows without bound towards the global parameter `t0` from the side
+    /// `dir` (±1): tenfold at least over each of three decades of distance.
+    fn unbounded_towards<F: Fn(f64) -> f64>(curvature: F, t0: f64, dir: f64) {
+        let k: Vec<f64> = [1e-2, 1e-3, 1e-4, 1e-5]
+            .iter()
+            .map(|d| curvature(t0 + dir * d).abs())
+            .collect();
+        for w in k.windows(2) {
+            assert!(w[1] > 5.0 * w[0], "{k:?} towards {t0}");
+        }
+    }
+
+    /// `cli_json` (and `bspline`, in 3D): a closed spline through A, B, A, C — a point
+    /// repeated two places apart — reported a finite maximum (106.3, or 15.8 in another
+    /// case) next to joints where |κ| grows without bound. The closed system forces
+    /// `b₀ = b₂` (subtract its rows 0 and 2: `4(b₀ − b₂) = 6(A − A)`), so
+    /// `r′(1) = (b₂ − b₀)/2 = 0`, and likewise `r′(3) = 0`: the curve runs A → B, turns back on
+    /// a cusp and returns. In floating point `r′` is a few units in the last place there,
+    /// on the side the segment analysis took as "cannot vanish". The maximum is infinite,
+    /// attained at both cusps.
+    #[test]
+    fn closed_spline_with_a_point_repeated_two_apart_has_cusps() {
+        let p = |x, y, z| Point3::new(x, y, z);
+        let pts = [
+            p(0.0, 0.0, 0.0),
+            p(0.0, 1.0, 0.4),
+            p(-0.0, 0.0, 0.0),
+            p(90.0, -1.0, -0.5),
+        ];
+        let s = BSpline3::new(&pts, true).unwrap();
+        let b = s.control_points();
+        assert!((b[0] - b[2]).length() <= 1e-14 * 90.0, "{b:?}");
+        let max = s.max_curvature();
+        assert_eq!(max.value, f64::INFINITY, "{max:?}");
+        near(&max.params, &[1.0, 3.0]);
+        for t0 in [1.0, 3.0] {
+            unbounded_towards(|t| s.curvature(t), t0, -1.0);
+            unbounded_towards(|t| s.curvature(t), t0, 1.0);
+        }
+        // The same through the command-line tool's parser (closed is its default).
+        #[cfg(feature = "serde")]
+        {
+            use kappa::input::{BSplineInput, BSplinePoints, InputLimits};
+            let text = r#"{"points": [[0,0,0],[0,1,0.4],[-0,0,0],[90,-1,-0.5]]}"#;
+            let input = BSplineInput::from_json(text, &InputLimits::default()).unwrap();
+            let BSplinePoints::Space(q) = input.points else {
+                panic!("3D points expected");
+            };
+            let m = BSpline3::new(&q, input.closed).unwrap().max_curvature();
+            assert_eq!(m.value, f64::INFINITY);
+            near(&m.params, &[1.0, 3.0]);
+        }
+    }
+
+    /// `bspline`, in 2D: the closed spline through A, B, C, B is its own reversal
+    /// (`s_k = s_{−k}`), so it folds back on itself at A and C (t = 0 and 2), with |κ|
+    /// growing like 1/|t − t₀| there. It reported 3.4877415 at t = 2.0000097 while
+    /// |κ(2.0000097)| = 3.4877461 and |κ| is far larger nearer the fold.
+    #[test]
+    fn closed_2d_spline_folding_back_has_cusps() {
+        let pts = [
+            Point::new(-0.0024541228522912146, 0.09996988186962043),
+            Point::new(-0.1, -0.1),
+            Point::new(-0.14877368741412678, -0.1999859409346915),
+            Point::new(-0.1, -0.1),
+        ];
+        let s = BSpline::new(&pts, true).unwrap();
+        let max = s.max_curvature();
+        assert_eq!(max.value, f64::INFINITY, "{max:?}");
+        near(&max.params, &[0.0, 2.0]);
+        // This fold is nearly straight (|κ| ≈ 3.5 at 1e-5 from it), but |κ| still grows
+        // without bound.
+        unbounded_towards(|t| s.curvature(t), 2.0, -1.0);
+        unbounded_towards(|t| s.curvature(t), 2.0, 1.0);
+    }
+
+    /// The segment analysis: a cubic whose last two control points differ by rounding, on the
+    /// side of the rest of the hodograph, has `r′(1)` within the stall tolerance, so
+    /// `curvature(1)` is 0 by convention; `max_curvature` ignored that stall (the hodograph
+    /// "excluded the origin" by 1e-15) and reported a finite value, although |κ| grows
+    /// without bound towards t = 1.
+    #[test]
+    fn cubic_with_an_end_stall_within_rounding_is_a_cusp() {
+        let c = CubicBez::new((0.0, 0.0), (1.0, 0.2), (2.0, 1.0), (2.0 + 1e-15, 1.0));
+        assert_eq!(CurvatureAnalysis::curvature(&c, 1.0), 0.0);
+        unbounded_towards(|t| CurvatureAnalysis::curvature(&c, t), 1.0, -1.0);
+        let max = c.max_curvature();
+        assert_eq!(max.value, f64::INFINITY, "{max:?}");
+        near(&max.params, &[1.0]);
+    }
+
+    /// `bspline`: points 1e-7 apart at coordinates near 1e4. The control points were mapped
+    /// to user coordinates (rounded to ~2e-12, 2e-5 of the extent) and back, so the two
+    /// segments meeting at t = 1 disagreed on |κ| there (904 against 496: the maximum was
+    /// not |κ| at its own parameter). Far from the origin the curvature is now computed from
+    /// the control points as solved in the normalized frame: a translated copy of exactly
+    /// representable points has the same normalized points as the original, so its curvature
+    /// is the same to rounding (the original, near the origin, maps its control points to
+    /// user coordinates and back, at a cost of a few units in the last place).
+    #[test]
+    fn spline_far_from_the_origin_has_the_curvature_of_its_translate() {
+        let unit = 2f64.powi(-30);
+        let base = [(0.0, 0.0), (3.0, 1.0), (5.0, 5.0), (4.0, 9.0), (0.0, 10.0)]
+            .map(|(x, y)| Point::new(x * unit, y * unit));
+        // Every coordinate + 1e4 (or + 6e3) is exact: 14 bits above 2⁻³⁰ fit in 53.
+        let far = base.map(|p| Point::new(p.x + 1e4, p.y + 6e3));
+        for closed in [false, true] {
+            let (a, b) = (
+                BSpline::new(&base, closed).unwrap(),
+                BSpline::new(&far, closed).unwrap(),
+            );
+            let (ma, mb) = (a.max_curvature(), b.max_curvature());
+            assert!(ma.value > 0.0 && ma.value.is_finite());
+            assert!(
+                (ma.value - mb.value).abs() <= 1e-12 * ma.value,
+                "{ma:?} {mb:?}"
+            );
+            assert_eq!(ma.params.len(), mb.params.len());
+            for (s, t) in ma.params.iter().zip(&mb.params) {
+                assert!((s - t).abs() <= 1e-9, "{ma:?} {mb:?}");
+            }
+            let end = a.param_range().end;
+            for k in 0..=400 {
+                let t = end * k as f64 / 400.0;
+                let (ka, kb) = (a.curvature(t), b.curvature(t));
+                assert!(
+                    (ka - kb).abs() <= 1e-12 * ma.value,
+                    "closed {closed}, t {t}"
+                );
+                assert!(kb.abs() <= mb.value, "closed {closed}, t {t}");
+            }
+            for &t in &mb.params {
+                assert!((b.curvature(t).abs() - mb.value).abs() <= 1e-12 * mb.value);
+            }
+        }
+    }
+
+    /// `bspline`: the reproducer itself: the maximum is |κ| at its parameters, the curvature
+    /// is continuous at the joint (both segments agree), and no sample exceeds the maximum.
+    #[test]
+    fn tiny_spline_far_from_the_origin_reports_an_attained_maximum() {
+        let pts = [
+            Point::new(-9937.80641339447, 5921.567682158566),
+            Point::new(-9937.806413485812, 5921.5676821030665),
+            Point::new(-9937.806413577155, 5921.567682047567),
+        ];
+        let s = BSpline::new(&pts, false).unwrap();
+        let max = s.max_curvature();
+        assert!(max.value.is_finite() && !max.params.is_empty(), "{max:?}");
+        for &t in &max.params {
+            assert!((s.curvature(t).abs() - max.value).abs() <= 1e-12 * max.value);
+        }
+        let (left, right) = (s.curvature(1.0 - 1e-12), s.curvature(1.0));
+        assert!((left - right).abs() <= 1e-6 * max.value, "{left} {right}");
+        for k in 0..=2000 {
+            let t = k as f64 / 1000.0;
+            assert!(s.curvature(t).abs() <= max.value * (1.0 + 1e-12), "t {t}");
+        }
+    }
+
+    /// `bspline`: an open spline at x = −1e308. The spline was right; the oracle computed
+    /// the end's second difference as `s₂ − 2s₁ + s₀`, where `2s₁` overflows. The relaxed
+    /// ends have no curvature, as differences of differences show.
+    #[test]
+    fn spline_near_the_largest_float_has_relaxed_ends() {
+        let pts = [
+            Point::new(-1e308, -33333.45645417772),
+            Point::new(-1e308, -33333.45645417773),
+        ];
+        let s = BSpline::new(&pts, false).unwrap();
+        // In user coordinates the control points are rounded to the spacing of floats near
+        // 33333 (7.3e-12, as large as the extent): the second differences are that rounding.
+        let q = s.segment_points(0).unwrap();
+        let d2 = |a: Point, b: Point, c: Point| (c - b) - (b - a);
+        let ulp = 33333.0 * f64::EPSILON;
+        assert!(d2(q[0], q[1], q[2]).hypot() <= 4.0 * ulp);
+        assert!(d2(q[1], q[2], q[3]).hypot() <= 4.0 * ulp);
+        assert_eq!(s.curvature(0.0), 0.0);
+        assert_eq!(s.max_curvature().value, 0.0);
+    }
+
+    /// `bspline` (ten-minute run): an open spline whose first two points are 6e-12 of the
+    /// drawing apart goes out along a line and comes back: its first segment's control points
+    /// are collinear to within 4e-14 of its size, so the segment analysis calls it straight
+    /// (κ ≡ 0, maximum 0) while `curvature` returned the rounding noise of `r′ × r″` over the
+    /// small `|r′|` of the reversal (2e-14 in user units, 3e-9 of the size, above the maximum
+    /// reported from the other segment). Straight segments now have κ = 0 everywhere.
+    #[test]
+    fn straight_reversal_has_no_curvature() {
+        let pts = [
+            Point::new(59191.262759079975, 58595.285368756224),
+            Point::new(59191.262758079974, 58595.28536775622),
+            Point::new(-100000.0, -100000.0),
+        ];
+        let s = BSpline::new(&pts, false).unwrap();
+        let max = s.max_curvature();
+        assert_eq!(max.value, 0.0, "{max:?}");
+        for k in 0..=2000 {
+            let t = k as f64 / 1000.0;
+            assert_eq!(s.curvature(t), 0.0, "t {t}");
+        }
+        // The segment is straight to the analysis too.
+        let seg = s.segment(0).unwrap();
+        assert_eq!(seg.max_curvature().value, 0.0);
+    }
+
+    /// `bspline` (ten-minute run): the first two segments of this open spline are a
+    /// reversal along a line, straight to within rounding, whose curvature bounds (the
+    /// curvature at their piece ends, rounding noise over a small `|r′|`) were taken as
+    /// attained: the lower bound exceeded the upper bounds of the curved segments, which
+    /// were skipped, and the maximum came from the noise at a joint (3.7e-22 against
+    /// 3.7e-17 on segment 3). Straight segments no longer count.
+    #[test]
+    fn straight_segments_do_not_prune_curved_ones() {
+        let pts = [
+            Point::new(182742310.49761695, 182745098.0392157),
+            Point::new(182741332.9814424, 182745098.0392157),
+            Point::new(182740355.46526784, 182745098.0392157),
+            Point::new(-8630238.521990895, 182745098.0392157),
+            Point::new(-200000831.59552413, 182745098.95318535),
+            Point::new(-391371423.7553319, 182745100.78088048),
+        ];
+        let s = BSpline::new(&pts, false).unwrap();
+        let max = s.max_curvature();
+        let sampled = (0..=5000)
+            .map(|k| s.curvature(k as f64 / 1000.0).abs())
+            .fold(0.0, f64::max);
+        assert!(sampled > 0.0);
+        assert!(max.value >= sampled * (1.0 - 1e-9), "{max:?} < {sampled}");
+        for &t in &max.params {
+            assert!((s.curvature(t).abs() - max.value).abs() <= 1e-9 * max.value);
+        }
     }
 }

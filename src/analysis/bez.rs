@@ -500,18 +500,23 @@ impl Bez {
         max_len2(&h1[..n1])
     }
 
-    /// Does the first hodograph lie strictly on one side of a plane through the origin (tested
-    /// for the normals `r′(0)`, `r′(1)` and their sum)? Then `r′` never vanishes.
+    /// Does the first hodograph lie on one side of a plane through the origin, farther from it
+    /// than the stall tolerance (tested for the normals `r′(0)`, `r′(1)` and their sum)? Then
+    /// `|r′| > STALL_TOL · max|h_i|` everywhere: no stall. The margin keeps this consistent with
+    /// [`is_stall_with`](Self::is_stall_with): a hodograph end within rounding of the origin
+    /// (a cusp at a joint of a spline) is a stall even if it lies on the positive side.
     fn hodograph_excludes_origin(&self) -> bool {
         let (h1, n1) = hodograph(self.points());
         let h = &h1[..n1];
         if h.is_empty() {
             return false;
         }
+        let margin = STALL_TOL * max_len2(h).sqrt();
         let (first, last) = (h[0], h[n1 - 1]);
-        [first, last, first + last]
-            .iter()
-            .any(|u| h.iter().all(|d| d.dot(*u) > 0.0))
+        [first, last, first + last].iter().any(|u| {
+            let len = u.length();
+            h.iter().all(|d| d.dot(*u) > margin * len)
+        })
     }
 
     /// Is `r′(t)` zero to within [`STALL_TOL`]?
@@ -603,6 +608,33 @@ impl Bez {
         Some(out)
     }
 
+    /// Is the segment straight: fewer than three control points, all coincident, or
+    /// `r′ × r″` below [`STRAIGHT_TOL`] (collinear to within rounding)? Then κ ≡ 0 by
+    /// convention, whatever rounding noise [`curvature`](Self::curvature) computes.
+    pub(crate) fn is_straight(&self) -> bool {
+        self.curved().is_none()
+    }
+
+    /// For a segment that is not straight (see [`is_straight`](Self::is_straight)), the
+    /// segment [`normalized`](Self::normalized) and the power form of its `r′`.
+    fn curved(&self) -> Option<(Bez, VPol)> {
+        if self.n < 2 {
+            return None;
+        }
+        let b = self.normalized()?;
+        let n = self.n;
+        let (h1, n1) = hodograph(b.points());
+        let (h2, n2) = hodograph(&h1[..n1]);
+        let h2_scale = max_len2(&h2[..n2]).sqrt();
+        let r1 = bernstein_to_power(&h1[..n1]);
+        // r′ × r″: the t^{2n-3} coefficient cancels exactly (parallel leading terms).
+        let c = r1.cross(&r1.deriv()).truncated(2 * n - 3);
+        if c.max_abs() <= STRAIGHT_TOL * h2_scale || c.max_abs().is_nan() {
+            return None;
+        }
+        Some((b, r1))
+    }
+
     /// The critical points of `κ²` in `(0, 1)`.
     ///
     /// 2D: `stationary` are the sign changes of `W = (r′×r‴)|r′|² − 3(r′×r″)(r′·r″)`
@@ -616,22 +648,10 @@ impl Bez {
             inflections: Buf::default(),
             straight: true,
         };
-        if self.n < 2 {
-            return out;
-        }
-        let Some(b) = self.normalized() else {
+        let Some((b, r1)) = self.curved() else {
             return out;
         };
         let n = self.n;
-        let (h1, n1) = hodograph(b.points());
-        let (h2, n2) = hodograph(&h1[..n1]);
-        let h2_scale = max_len2(&h2[..n2]).sqrt();
-        let r1 = bernstein_to_power(&h1[..n1]);
-        // r′ × r″: the t^{2n-3} coefficient cancels exactly (parallel leading terms).
-        let c = r1.cross(&r1.deriv()).truncated(2 * n - 3);
-        if c.max_abs() <= STRAIGHT_TOL * h2_scale || c.max_abs().is_nan() {
-            return out;
-        }
         out.straight = false;
 
         // Near a near-stall (|r′| tiny) the stationarity polynomials take values far below the

@@ -222,6 +222,14 @@ impl CurvatureAnalysis for SpaceBez {
     }
 }
 
+/// Is `seg` straight to within rounding (control points coincident or collinear, see the
+/// [module docs](self))? Then its curvature is 0 by convention, and
+/// [`CurvatureAnalysis::max_curvature`] reports 0; `curvature` itself returns the rounding
+/// noise of `r′ × r″`, which next to a reversal of direction (`|r′|` small) can be large.
+pub(crate) fn is_straight<C: CurvatureAnalysis>(seg: &C) -> bool {
+    seg.to_bez().is_straight()
+}
+
 /// The maximum of |κ| over all segments of a path, with every `(segment_index, t)` where it is
 /// attained. Segment indices are those of [`BezPath::segments`] (closing lines included).
 ///

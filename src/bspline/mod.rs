@@ -20,6 +20,11 @@ use crate::{Coords, Error, Point3};
 /// their bounding box) are repeated.
 const COINCIDENT: f64 = 1e-12;
 
+/// The control points are kept in the normalized frame too when a coordinate of the centre of
+/// the points' bounding box exceeds this many drawing sizes: mapping them to user coordinates
+/// and back then loses more than about `(2 · 3/2 + FAR) ε` of the drawing size.
+const FAR: f64 = 2.0;
+
 /// The diagonal of the interpolation system `b_{k−1} + 4 b_k + b_{k+1} = 6 s_k`.
 const DIAGONAL: f64 = 4.0;
 
@@ -71,8 +76,27 @@ const CONTROL_REACH: f64 = 1.5 + 1e-9;
 /// eqs. 15–16; 3D: seed 002 eq. 13, degree ≤ 7) plus both segment ends are the candidates;
 /// the maximum of |κ| is returned with **every** global parameter where it is attained, ties
 /// counted within a relative [`BSplineCurvatureMax::TIE_TOLERANCE`] (1e-12): symmetric data
-/// has several equal maxima. [`BSpline::curvature`] is Algorithm 2, the curvature at any
-/// global parameter.
+/// has several equal maxima. The value is |κ| re-measured at the reported global parameter
+/// (the one [`BSpline::curvature`] sees), so it is attained exactly where it is reported.
+/// [`BSpline::curvature`] is Algorithm 2, the curvature at any global parameter.
+///
+/// **Cusps.** Where `r′ = 0` (to within [`STALL_TOLERANCE`](crate::analysis::STALL_TOLERANCE)
+/// of the segment's hodograph) and |κ| grows without bound next to it, the maximum is
+/// [`f64::INFINITY`], reported at the cusp parameters (where `curvature` returns 0 by
+/// convention). Data force such cusps: a closed spline through `A, B, A, C` (a point
+/// repeated two places apart) has `b₀ = b₂` exactly (subtract rows 0 and 2 of the system), so
+/// `r′(1) = (b₂ − b₀)/2 = 0` and the curve turns back at `B`; a closed spline that is its own
+/// reversal (`s_k = s_{−k}`) folds back at its two fixed points. In floating point `r′` is a
+/// few units in the last place there rather than 0, which the stall tolerance absorbs. Near
+/// (not exact) cusps have a finite, possibly huge maximum.
+///
+/// **Precision.** For points far from the origin relative to their extent (the centre of their
+/// bounding box more than 2 extents away) the control points are also kept in the normalized
+/// frame as solved there, and the curvature is computed from those: mapping the user control
+/// points back would round them to the magnitude of the coordinates, which for points 1e-7
+/// apart at 1e4, say, is most of their precision, and the two segments at a joint would then
+/// disagree on |κ| there. Near the origin the round trip costs a few units in the last place
+/// and the extra memory is not spent.
 ///
 /// Running the root finder on every segment costs a few microseconds each, so segments are
 /// first screened by cheap bounds (`curvature_bounds`): the curvature at the joints is a lower
@@ -126,6 +150,13 @@ pub struct BSpline<P = Point> {
     points: Vec<P>,
     /// The control points `b_k`.
     control: Vec<P>,
+    /// The control points `b_k` in the normalized frame, as solved there, when the points lie
+    /// far from the origin relative to their extent ([`FAR`]); empty otherwise. Mapping the
+    /// user control points back to the normalized frame rounds them to the magnitude of the
+    /// coordinates, which for such points is much of their precision (most of it for points
+    /// 1e-7 apart at 1e4); near the origin it costs a few units in the last place and no
+    /// memory.
+    local_control: Vec<P>,
     /// Centre of the points' bounding box.
     center: P,
     /// Larger side of the points' bounding box (positive).
@@ -165,26 +196,28 @@ mod sealed {
         /// The exact segment type.
         type Seg: CurvatureAnalysis;
 
-        /// Validate `points`, then replace `control` by the control points (user
-        /// coordinates); returns the centre and the size of the normalized frame. `control`
-        /// is untouched on error.
+        /// Validate `points`, then replace `control` by the control points (user coordinates)
+        /// and `local_control` by the control points in the normalized frame if the points are
+        /// [`FAR`] from the origin (else clear it); returns the centre and the size of the
+        /// normalized frame. The vectors are untouched on error.
         fn interpolate(
             points: &[Self],
             closed: bool,
             control: &mut Vec<Self>,
+            local_control: &mut Vec<Self>,
         ) -> Result<(Self, f64), Error>;
 
         /// `wa a + wb b`.
         fn combine(a: Self, wa: f64, b: Self, wb: f64) -> Self;
-
-        /// `(self − center) / size`.
-        fn to_local(self, center: Self, size: f64) -> Self;
 
         /// The cubic segment with these control points.
         fn segment(p: [Self; 4]) -> Self::Seg;
 
         /// Arc length of a segment.
         fn arclen(seg: &Self::Seg, accuracy: f64) -> f64;
+
+        /// `(self − center) / size`.
+        fn to_local(self, center: Self, size: f64) -> Self;
 
         /// A point with every coordinate NaN.
         fn nan() -> Self;
@@ -210,8 +243,9 @@ macro_rules! impl_sealed {
                 points: &[Self],
                 closed: bool,
                 control: &mut Vec<Self>,
+                local_control: &mut Vec<Self>,
             ) -> Result<(Self, f64), Error> {
-                interpolate::<$p, $d>(points, closed, control)
+                interpolate::<$p, $d>(points, closed, control, local_control)
             }
 
             #[inline]
@@ -221,18 +255,18 @@ macro_rules! impl_sealed {
             }
 
             #[inline]
-            fn to_local(self, center: Self, size: f64) -> Self {
-                let (p, c) = (self.coords(), center.coords());
-                <$p>::from_coords(core::array::from_fn(|k| (p[k] - c[k]) / size))
-            }
-
-            #[inline]
             fn segment($s: [Self; 4]) -> $seg {
                 $make
             }
 
             fn arclen($g: &$seg, $acc: f64) -> f64 {
                 $arclen
+            }
+
+            #[inline]
+            fn to_local(self, center: Self, size: f64) -> Self {
+                let (p, c) = (self.coords(), center.coords());
+                <$p>::from_coords(core::array::from_fn(|k| (p[k] - c[k]) / size))
             }
 
             fn nan() -> Self {
@@ -379,7 +413,13 @@ fn curvature_bounds<const D: usize>(p: [[f64; D]; 4]) -> CurvatureBounds {
     );
     let c1: [f64; 3] = core::array::from_fn(|k| (2.0 * h1g0[k] + h0g1[k]) / 3.0);
     let c2: [f64; 3] = core::array::from_fn(|k| (h2g0[k] + 2.0 * h1g1[k]) / 3.0);
-    let num = norm3(c0).max(norm3(c1)).max(norm3(c2)).max(norm3(c3));
+    // Plus the rounding of the cross products (a few ε |h| |g| each): for a segment
+    // collinear to within rounding they are that rounding, and the bound must still hold for
+    // the curvature computed from the same control points.
+    let hmax = h.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
+    let gmax = g.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
+    let num =
+        norm3(c0).max(norm3(c1)).max(norm3(c2)).max(norm3(c3)) + 16.0 * f64::EPSILON * hmax * gmax;
     let kappa_end = |c: [f64; 3], v: [f64; D]| {
         let l = dot(v, v).sqrt();
         let k = norm3(c) / (l * l * l);
@@ -417,11 +457,14 @@ fn curvature_bounds<const D: usize>(p: [[f64; D]; 4]) -> CurvatureBounds {
 ///
 /// Four sweeps over the points: bounds, repeated points, and the two of the solver, which
 /// reads the right-hand sides straight from the points and writes the control points in user
-/// coordinates (the solver's vectors are points of the normalized frame until then).
+/// coordinates (the solver's vectors are points of the normalized frame until then). For
+/// points [`FAR`] from the origin the solver writes the normalized control points, and a fifth
+/// sweep maps them to user coordinates.
 fn interpolate<P: Coords<D> + Lin, const D: usize>(
     points: &[P],
     closed: bool,
     control: &mut Vec<P>,
+    local_control: &mut Vec<P>,
 ) -> Result<(P, f64), Error> {
     let m = points.len();
     let (kind, needed) = if closed {
@@ -518,15 +561,37 @@ fn interpolate<P: Coords<D> + Lin, const D: usize>(
         let c = x.coords();
         P::from_coords(core::array::from_fn(|k| c[k] * size + center[k]))
     };
+    let far = center.iter().any(|c| c.abs() > FAR * size);
+    local_control.clear();
     control.clear();
     control.reserve(m);
-    if !closed {
-        control.push(points[0]);
-    }
-    let solved = solve_symmetric_toeplitz_into(DIAGONAL, closed, unknowns, rhs, control, to_user);
-    debug_assert!(solved, "the diagonal is a valid constant");
-    if !closed {
-        control.push(points[m - 1]);
+    if far {
+        local_control.reserve(m);
+        if !closed {
+            local_control.push(P::from_coords(first));
+        }
+        let solved =
+            solve_symmetric_toeplitz_into(DIAGONAL, closed, unknowns, rhs, local_control, |x| x);
+        debug_assert!(solved, "the diagonal is a valid constant");
+        if !closed {
+            local_control.push(P::from_coords(last));
+        }
+        control.extend(local_control.iter().map(|&b| to_user(b)));
+        if !closed {
+            // The ends are the data points themselves, exactly.
+            control[0] = points[0];
+            control[m - 1] = points[m - 1];
+        }
+    } else {
+        if !closed {
+            control.push(points[0]);
+        }
+        let solved =
+            solve_symmetric_toeplitz_into(DIAGONAL, closed, unknowns, rhs, control, to_user);
+        debug_assert!(solved, "the diagonal is a valid constant");
+        if !closed {
+            control.push(points[m - 1]);
+        }
     }
     Ok((P::from_coords(center), size))
 }
@@ -543,12 +608,13 @@ impl<P: BSplinePoint> BSpline<P> {
     /// [`Error::ExtentOverflow`] (the extent of the points is not a finite `f64`, or the
     /// control points could overflow: a coordinate within 1.5 extents of `±f64::MAX`).
     pub fn new(points: &[P], closed: bool) -> Result<Self, Error> {
-        let mut control = Vec::new();
-        let (center, size) = P::interpolate(points, closed, &mut control)?;
+        let (mut control, mut local_control) = (Vec::new(), Vec::new());
+        let (center, size) = P::interpolate(points, closed, &mut control, &mut local_control)?;
         Ok(BSpline {
             closed,
             points: points.to_vec(),
             control,
+            local_control,
             center,
             size,
         })
@@ -558,7 +624,8 @@ impl<P: BSplinePoint> BSpline<P> {
     /// [`new`](Self::new) without allocating when the point count does not grow (for
     /// interactive editing, or many splines in a row). On error the spline is unchanged.
     pub fn set_points(&mut self, points: &[P], closed: bool) -> Result<(), Error> {
-        let (center, size) = P::interpolate(points, closed, &mut self.control)?;
+        let (center, size) =
+            P::interpolate(points, closed, &mut self.control, &mut self.local_control)?;
         self.points.clear();
         self.points.extend_from_slice(points);
         self.closed = closed;
@@ -630,10 +697,23 @@ impl<P: BSplinePoint> BSpline<P> {
         P::segment(self.local_points(i))
     }
 
-    /// The control points of segment `i` in the normalized frame.
+    /// The control points of segment `i` in the normalized frame (the same formula as
+    /// [`segment_points`](Self::segment_points)), from the normalized control points when they
+    /// are kept ([`FAR`]).
     fn local_points(&self, i: usize) -> [P; 4] {
-        let pts = self.segment_points(i).expect("segment index in range");
-        pts.map(|p| p.to_local(self.center, self.size))
+        let j = (i + 1) % self.points.len();
+        let local = |p: P| p.to_local(self.center, self.size);
+        let (b0, b1) = if self.local_control.is_empty() {
+            (local(self.control[i]), local(self.control[j]))
+        } else {
+            (self.local_control[i], self.local_control[j])
+        };
+        [
+            local(self.points[i]),
+            P::combine(b0, 2.0 / 3.0, b1, 1.0 / 3.0),
+            P::combine(b0, 1.0 / 3.0, b1, 2.0 / 3.0),
+            local(self.points[j]),
+        ]
     }
 
     /// The segment containing the global parameter `t` and the parameter in `[0, 1]` on it
@@ -680,13 +760,25 @@ impl<P: BSplinePoint> BSpline<P> {
     /// The curvature at global parameter `t` (seed 002, Algorithm 2): signed in 2D (positive
     /// for left turns, `(x′y″ − y′x″)/|r′|³`), `|r′ × r″|/|r′|³` in 3D. Computed in the
     /// normalized frame, so it does not overflow for huge or tiny coordinates. NaN for a NaN
-    /// `t`; 0 where `r′ = 0`.
+    /// `t`; 0 where `r′ = 0` and on segments whose control points are collinear to within
+    /// rounding (straight, see [`analysis`](crate::analysis)).
     pub fn curvature(&self, t: f64) -> f64 {
+        self.local_curvature(t) / self.size
+    }
+
+    /// The curvature at global parameter `t` in the normalized frame.
+    fn local_curvature(&self, t: f64) -> f64 {
         let (i, u) = self.locate(t);
         if u.is_nan() {
             return f64::NAN;
         }
-        CurvatureAnalysis::curvature(&self.local_segment(i), u) / self.size
+        let seg = self.local_segment(i);
+        if crate::analysis::is_straight(&seg) {
+            // κ ≡ 0 on a segment straight to within rounding, as its maximum says; the noise
+            // of `r′ × r″` over a small `|r′|` (a straight reversal) is not curvature.
+            return 0.0;
+        }
+        CurvatureAnalysis::curvature(&seg, u)
     }
 
     /// The maximum of |κ| and every global parameter where it is attained (seed 002,
@@ -699,11 +791,27 @@ impl<P: BSplinePoint> BSpline<P> {
         // Cheap bounds first: |κ| at every joint is a lower bound of the maximum, and a
         // segment whose upper bound stays below it cannot attain it. The rest are analysed in
         // decreasing order of their bound, until the bound drops below the best value found.
+        //
+        // A segment straight to within rounding has κ ≡ 0 (its curvature is 0, see
+        // `curvature`): its bound is 0, and the values at the ends of a segment next to one
+        // are not counted as attained (at the joint `curvature` sees the straight one).
+        let straight: Vec<bool> = (0..count)
+            .map(|i| crate::analysis::is_straight(&self.local_segment(i)))
+            .collect();
+        let next_straight = |i: usize| {
+            i + 1 < count && straight[i + 1] || i + 1 == count && self.closed && straight[0]
+        };
         let mut bounds: Vec<(usize, f64)> = Vec::with_capacity(count);
         let mut lower = 0.0f64;
-        for i in 0..count {
+        for (i, &flat) in straight.iter().enumerate() {
+            if flat {
+                bounds.push((i, 0.0));
+                continue;
+            }
             let b = P::curvature_bounds(self.local_points(i), 1);
-            lower = lower.max(b.at_ends);
+            if !next_straight(i) {
+                lower = lower.max(b.at_ends);
+            }
             bounds.push((i, b.upper));
         }
         // The bounds are exact up to rounding; the margin absorbs it.
@@ -711,8 +819,13 @@ impl<P: BSplinePoint> BSpline<P> {
         bounds.retain(|b| !prunable(b.1, lower));
         // Tighter bounds (and more attained values) for the segments left, from pieces.
         for b in &mut bounds {
+            if straight[b.0] {
+                continue;
+            }
             let r = P::curvature_bounds(self.local_points(b.0), BOUND_PIECES);
-            lower = lower.max(r.at_ends);
+            if !next_straight(b.0) {
+                lower = lower.max(r.at_ends);
+            }
             b.1 = r.upper;
         }
         bounds.retain(|b| !prunable(b.1, lower));
@@ -729,21 +842,29 @@ impl<P: BSplinePoint> BSpline<P> {
             if m.value < best * tie {
                 continue;
             }
-            if m.value > best {
-                best = m.value;
-                cands.retain(|c| c.1 >= best * tie);
-            }
             for &u in &m.params {
                 // The analysis reports parameters within its own (looser) tolerance of the
-                // segment's maximum: re-measure each one. At a cusp, or where r′ = 0 with a
-                // finite limit, the value is the analysis' limit, not the 0 of `curvature`.
-                let k = CurvatureAnalysis::curvature(&seg, u).abs();
+                // segment's maximum: re-measure each one where it is reported, at the global
+                // parameter, so that the value is |κ| there exactly. At a cusp, or where
+                // r′ = 0 with a finite limit, the value is the analysis' limit, not the 0 of
+                // `curvature`.
+                let t = i as f64 + u;
+                if !straight[i] && straight[self.locate(t).0] {
+                    // A joint with a straight segment, where `curvature` is 0 (not a maximum
+                    // of this curved one).
+                    continue;
+                }
+                let k = self.local_curvature(t).abs();
                 let v = if m.value.is_infinite() || (k == 0.0 && m.value > 0.0) {
                     m.value
                 } else {
                     k
                 };
-                cands.push((i as f64 + u, v));
+                if v > best {
+                    best = v;
+                    cands.retain(|c| c.1 >= best * tie);
+                }
+                cands.push((t, v));
             }
         }
         let end = count as f64;
