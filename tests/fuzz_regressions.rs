@@ -355,4 +355,61 @@ mod fix2d {
             }
         }
     }
+
+    /// `solve2d`: εκ-cubic curves with `a = 1 − 1e-9` through nearly collinear points. The
+    /// cubic's inner leg is `(1 − a)` times its outer legs, so the curvature at its ends is
+    /// made of a leg whose sideways part is below one ulp of the coordinates: one side of a
+    /// joint evaluated to |κ| = 0, the other to 1.7e-14, and the oracle (which bounded the
+    /// rounding by the defining triangle's legs) took that for a G2 failure. Both sides are
+    /// flat to rounding, as G2 with a → 1 demands; the oracle now bounds the rounding with the
+    /// segment's own derivatives.
+    #[test]
+    fn ek_cubic_joints_with_a_near_one_are_flat() {
+        let closed = pts(&[
+            (-0.0009911150208111875, -0.00035937422638436344),
+            (0.0009999990000000001, 7.734664794461491e-10),
+            (0.0029911130208205698, 0.00035937577331006436),
+        ]);
+        let open = pts(&[
+            (999.6988186962043, -24.541228522912448),
+            (989.1765099647808, -146.73047445536238),
+            (968.131892501934, -391.10896632026225),
+            (947.0872750475185, -635.4874581767308),
+        ]);
+        let a = 1.0 - 1e-9;
+        for (p, is_closed, shape) in [
+            (closed, true, Shape::Global(a)),
+            (
+                open,
+                false,
+                Shape::PerPoint(vec![0.9735490196078431, a, a, a]),
+            ),
+        ] {
+            let s = Solver::new()
+                .solve(&p, is_closed, Scheme::EkCubic, &shape)
+                .unwrap();
+            let size = p
+                .iter()
+                .flat_map(|q| p.iter().map(move |r| q.distance(*r)))
+                .fold(0.0, f64::max);
+            let segs = s.segments();
+            let joints = if is_closed {
+                segs.len()
+            } else {
+                segs.len() - 1
+            };
+            for j in 0..joints {
+                let (ka, kb) = (
+                    segs[j].curvature(1.0),
+                    segs[(j + 1) % segs.len()].curvature(0.0),
+                );
+                assert!(
+                    ka.abs() * size <= 1e-12 && kb.abs() * size <= 1e-12,
+                    "joint {j}: |κ|·size {} and {}",
+                    ka.abs() * size,
+                    kb.abs() * size
+                );
+            }
+        }
+    }
 }
