@@ -23,7 +23,8 @@ pub enum Error {
         /// Index of the offending point.
         index: usize,
     },
-    /// Two consecutive input points coincide (or nearly so, relative to the drawing size).
+    /// Two consecutive input points coincide (or nearly so: relative to the drawing size, or
+    /// for κ- and εκ-curves also to within a few units in the last place of their coordinates).
     #[error("points {index} and {next} coincide")]
     RepeatedPoint {
         /// Index of the first point of the pair.

@@ -21,6 +21,15 @@ const EXTENT_HEADROOM: f64 = 1e3;
 /// the spread of a closed curve's points off their best line counts as collinear.
 const COINCIDENT: f64 = 1e-12;
 
+/// Two consecutive points closer than this many `f64::EPSILON`s times their largest
+/// coordinate magnitude (4 to 8 units in the last place) also count as repeated: their
+/// difference is rounding noise of their own coordinates (a pair one ulp apart has one of
+/// eight directions), so no curve through them means anything, and a drawing a few hundred
+/// ulps wide cannot hold its own control points (found by fuzzing: peaks at such pairs
+/// moved by up to 100 % of |κ| when the same solution was written in user coordinates).
+/// Scale-invariant: it depends on where the points are, not on the units.
+const ULP_COINCIDENT: f64 = 4.0;
+
 /// The family of segments a curve is built from.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 #[cfg_attr(
@@ -820,7 +829,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                 .map(|k| (local[next][k] - local[i][k]).powi(2))
                 .sum::<f64>()
                 .sqrt();
-            if d <= COINCIDENT {
+            if d <= COINCIDENT || within_rounding(self.points[i], self.points[next]) {
                 return Err(Error::RepeatedPoint { index: i, next });
             }
         }
@@ -1022,6 +1031,22 @@ fn monotone_along_line<const D: usize>(p: &[[f64; D]]) -> bool {
     let dir: [f64; D] = core::array::from_fn(|k| far[k] - p[0][k]);
     let along = |q: &[f64; D]| (0..D).map(|k| (q[k] - p[0][k]) * dir[k]).sum::<f64>();
     p.windows(2).all(|w| along(&w[1]) > along(&w[0]))
+}
+
+/// Whether two points coincide to within the rounding of their own coordinates:
+/// `|a − b| ≤ ULP_COINCIDENT · ε · max |coordinate|` (see [`ULP_COINCIDENT`]).
+fn within_rounding<const D: usize>(a: [f64; D], b: [f64; D]) -> bool {
+    let mag = a.iter().chain(&b).fold(0.0f64, |m, v| m.max(v.abs()));
+    if mag == 0.0 {
+        return true;
+    }
+    // In units of the magnitude (squares of tiny differences underflow), halves first (the
+    // difference of finite points can overflow).
+    let d = (0..D)
+        .map(|k| ((0.5 * a[k] - 0.5 * b[k]) / mag).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    d <= 0.5 * ULP_COINCIDENT * f64::EPSILON
 }
 
 /// Whether all points lie on one line (relative to the drawing size 1).
