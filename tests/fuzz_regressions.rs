@@ -668,3 +668,266 @@ mod fix2d {
         }
     }
 }
+
+/// The `space` findings of the hostile-input work: replaced ranges too short for `f64`,
+/// kept joints, and slivers of quadratic left between two quartics.
+mod fixspace {
+    use kappa::analysis::CurvatureAnalysis;
+    use kappa::space::{
+        Gamma, PeakAtJoint, Piece, Replace, SpaceCurve, SpaceOptions, MIN_REPLACED,
+    };
+    use kappa::{Error, Point3};
+
+    /// A closed, non-planar curve with a dihedral symmetry: every input point sits in the
+    /// middle of its κ-segment.
+    fn crown() -> Vec<Point3> {
+        (0..6)
+            .map(|k| {
+                let th = std::f64::consts::TAU * k as f64 / 6.0;
+                let z = if k % 2 == 0 { 0.3 } else { -0.3 };
+                Point3::new(th.cos(), th.sin(), z)
+            })
+            .collect()
+    }
+
+    fn options(replace: Replace) -> SpaceOptions {
+        SpaceOptions {
+            replace,
+            ..SpaceOptions::default()
+        }
+    }
+
+    /// `t2 = 3·10⁻¹⁴` (or `1 − t1` as small) left a replaced piece a few hundred units in the
+    /// last place long, and the quartic's end tangent missed the quadratic's by 10⁻³ rad. Such
+    /// ranges are refused; `MIN_REPLACED` itself is accepted and G2.
+    #[test]
+    fn replaced_ranges_below_the_minimum_are_invalid_options() {
+        let pts = crown();
+        for replace in [
+            Replace::Partial {
+                t1: 0.099,
+                t2: 3.05e-14,
+            },
+            Replace::Partial {
+                t1: 1.0 - 1.2e-14,
+                t2: 0.5,
+            },
+            Replace::Partial { t1: 0.5, t2: 0.0 },
+            Replace::Partial { t1: -0.1, t2: 0.5 },
+            Replace::Partial {
+                t1: 0.5,
+                t2: f64::NAN,
+            },
+            Replace::fraction(1e-4),
+        ] {
+            let r = SpaceCurve::new(&pts, true, &options(replace));
+            assert!(
+                matches!(r, Err(Error::InvalidOption(_))),
+                "{replace:?}: {r:?}"
+            );
+        }
+        for replace in [
+            Replace::fraction(MIN_REPLACED),
+            Replace::Partial {
+                t1: 1.0 - MIN_REPLACED,
+                t2: MIN_REPLACED,
+            },
+            Replace::FULL,
+        ] {
+            let c = SpaceCurve::new(&pts, true, &options(replace)).unwrap();
+            assert!(c.kept_joints().is_empty());
+            for gap in c.curvature_vector_gaps() {
+                assert!(gap < 1e-9, "{replace:?}: {gap:e}");
+            }
+        }
+    }
+
+    /// With `Replace::FULL` and `PeakAtJoint::Keep`, a point at the very end of its
+    /// κ-segment keeps the κ-curve's joint, which is G1 with equal |κ| only; the oracle
+    /// asked G2 of it. `kept_joints` names such joints; every other joint is G2.
+    #[test]
+    fn kept_joints_are_reported_and_the_rest_is_g2() {
+        let pts = [
+            Point3::new(
+                0.0009996988186962042,
+                -2.4541228522912447e-5,
+                0.0006258641614573417,
+            ),
+            Point3::new(-0.001, -0.0009999854564666714, -0.001),
+            Point3::new(-0.001, -0.001, -0.001),
+            Point3::new(
+                -0.0008749999999708962,
+                -2.1219486375678722e-8,
+                0.00038311672196330427,
+            ),
+        ];
+        let o = SpaceOptions {
+            replace: Replace::FULL,
+            gamma: Gamma::Lambda,
+            at_joint: PeakAtJoint::Keep,
+            ..SpaceOptions::default()
+        };
+        let c = SpaceCurve::new(&pts, true, &o).unwrap();
+        assert_eq!(c.kept_joints().len(), 1);
+        let gaps = c.curvature_vector_gaps();
+        for (j, gap) in c.continuity().iter().zip(gaps) {
+            let (a, b) = (&c.segments()[j.before], &c.segments()[j.after]);
+            let (ka, kb) = (
+                CurvatureAnalysis::curvature(a, 1.0),
+                CurvatureAnalysis::curvature(b, 0.0),
+            );
+            assert!(j.continuity.tangent_angle < 1e-9, "{j:?}");
+            if c.kept_joints().contains(&j.before) {
+                // Equal |κ| (the κ-curve's joint), different planes.
+                assert!((ka - kb).abs() < 1e-8 * ka, "{ka} {kb}");
+                assert!(gap > 1e-3, "{gap}");
+            } else {
+                assert!(gap < 1e-9, "{j:?}: {gap:e}");
+            }
+        }
+        // The kept joint is the κ-curve's joint: the end of κ-segment 1.
+        let k = c.kept_joints()[0];
+        let joint = c.spline().segments()[1].q[2];
+        assert_eq!(c.segments()[k].end(), joint);
+    }
+
+    /// `t1 = t2` just below an input point's parameter left a quadratic piece 5·10⁻⁸ long
+    /// between two quartics, whose curvature (from nearly coincident control points) was
+    /// rounding: the G2 gap was of order 1. Such slivers are absorbed, the two quartics meet
+    /// at the point.
+    #[test]
+    fn no_sliver_of_quadratic_between_quartics() {
+        let pts = crown();
+        let t = 0.5 - 5e-8;
+        let c = SpaceCurve::new(&pts, true, &options(Replace::Partial { t1: t, t2: t })).unwrap();
+        for p in c.pieces() {
+            if let Piece::Quadratic { start, end, .. } = *p {
+                assert!(end - start >= MIN_REPLACED, "{p:?}");
+            }
+        }
+        for gap in c.curvature_vector_gaps() {
+            assert!(gap < 1e-9, "{gap:e}");
+        }
+        // Every input point is still on the curve.
+        for (&(seg, u), p) in c.point_params().iter().zip(&pts) {
+            assert!(c.segments()[seg].eval(u).distance(*p) < 1e-12);
+        }
+    }
+}
+
+/// The `hermite` findings of the hostile-input work: solves that ran for half a minute or
+/// more are now bounded by the iteration cap.
+mod fixspace_hermite {
+    use std::time::{Duration, Instant};
+
+    use kappa::intrinsic::{Hermite, HermiteEnd, Profile, Turning};
+    use kappa::{Error, SolveOptions};
+    use kurbo::Point;
+
+    fn end(point: Point, angle: f64) -> HermiteEnd {
+        HermiteEnd {
+            point,
+            angle,
+            curvature: None,
+        }
+    }
+
+    /// A rational quadratic profile with weights 2141 : 3.1 : 0.1 whose homotopy followed
+    /// the solutions out to turnings of 10⁵ radians, with quadratures of 400 000 nodes: 112 s.
+    /// Now the work cap stops it with `NotConverged`, in time proportional to the cap.
+    #[test]
+    fn runaway_rational_homotopy_is_not_converged_within_the_cap() {
+        let h = Hermite {
+            start: end(
+                Point::new(0.0, 2.2250738585072014e-308),
+                -std::f64::consts::PI,
+            ),
+            end: end(
+                Point::new(1.0000000000000001e-21, 2.2250738585072014e-308),
+                -1.1289611727700928,
+            ),
+            turning: Turning::AsGiven,
+        };
+        let profile =
+            Profile::free(2).with_weights(vec![2141.418459858144, 3.1, 0.10000017322599888]);
+        let t = Instant::now();
+        let r = h.solve(&profile);
+        let elapsed = t.elapsed();
+        match r {
+            Err(Error::NotConverged {
+                iterations,
+                residual,
+            }) => {
+                assert!(iterations > 0 && iterations <= 2000, "{iterations}");
+                assert!(residual > 1e-6, "{residual}");
+            }
+            other => panic!("{other:?}"),
+        }
+        assert!(elapsed < Duration::from_secs(3), "{elapsed:?}");
+        // A tenth of the cap: fewer iterations, and the same error.
+        let opts = SolveOptions {
+            max_iterations: 200,
+            ..SolveOptions::default()
+        };
+        match h.solve_with(&profile, &opts) {
+            Err(Error::NotConverged { iterations, .. }) => assert!(iterations <= 200),
+            other => panic!("{other:?}"),
+        }
+    }
+
+    /// Weights 0.118 and 5e-324 (a subnormal): `max / min` overflowed to ∞, and the
+    /// quadrature took its largest size (2.4 million nodes) for every evaluation. The
+    /// log-ratio now gives 2 142 pieces, and the cap ends the solve quickly.
+    #[test]
+    fn subnormal_weight_does_not_blow_up_the_quadrature() {
+        let h = Hermite {
+            start: end(
+                Point::new(0.0, 2.2250738585072014e-308),
+                -3.0799926191610467,
+            ),
+            end: end(Point::new(-0.1, 1.2246467991473533e-17), 4.884015067854367),
+            turning: Turning::AsGiven,
+        };
+        let profile = Profile::free(1).with_weights(vec![0.11786434464572562, 5e-324]);
+        let t = Instant::now();
+        let r = h.solve(&profile);
+        assert!(
+            matches!(
+                r,
+                Err(Error::NotConverged { .. }) | Err(Error::NoHermiteSolution { .. })
+            ),
+            "{r:?}"
+        );
+        assert!(t.elapsed() < Duration::from_secs(2), "{:?}", t.elapsed());
+    }
+
+    /// `solve` is `solve_with` at the default cap, and an ordinary problem is far below it.
+    #[test]
+    fn solve_with_a_small_cap_still_solves_ordinary_problems() {
+        let h = Hermite::g2(
+            Point::new(0.0, 0.0),
+            0.3,
+            0.5,
+            Point::new(2.0, 0.5),
+            -0.2,
+            -0.4,
+        );
+        let profile = Profile::free(5).with_weights(vec![1.0, 2.0, 0.5, 1.5, 1.0, 1.0]);
+        let a = h.solve(&profile).unwrap();
+        let opts = SolveOptions {
+            max_iterations: 50,
+            ..SolveOptions::default()
+        };
+        let b = h.solve_with(&profile, &opts).unwrap();
+        assert_eq!(a, b);
+        assert!(h.end_error(&b) < 1e-9);
+        let none = SolveOptions {
+            max_iterations: 0,
+            ..SolveOptions::default()
+        };
+        assert!(matches!(
+            h.solve_with(&profile, &none),
+            Err(Error::NotConverged { iterations: 0, .. })
+        ));
+    }
+}

@@ -40,7 +40,16 @@ use super::bernstein;
 use super::clothoid;
 use super::quad::Rule;
 use super::segment::{check_weights, IntrinsicSeg, MAX_TURNING};
-use crate::Error;
+use crate::{Error, SolveOptions};
+
+/// Quadrature nodes per unit of the iteration cap ([`Hermite::solve_with`]): a solve
+/// evaluates at most `max_iterations × NODES_PER_ITERATION` nodes. A Newton iteration of a
+/// typical problem evaluates a few hundred (one 24-point piece per 6 radians of turning), so
+/// the cap is rarely the limit below turnings of hundreds of radians.
+pub const NODES_PER_ITERATION: usize = 2048;
+
+/// The work of tabulating one quadrature node, in evaluations of a node of the residual.
+const TABLE_COST: usize = 4;
 
 /// Newton iterations per solve.
 const NEWTON_ITERATIONS: usize = 40;
@@ -241,10 +250,37 @@ impl Hermite {
     /// points; [`Error::InvalidOption`] for non-finite angles or curvatures, only one end
     /// curvature, a degree too low for the data (G1: 1, G2: 3), a [`Control::Given`] or
     /// [`Control::Same`] where the solver chooses, a bad [`Control::Same`] index, or bad
-    /// weights; [`Error::NoHermiteSolution`] when no curve of the profile meets the data.
+    /// weights; [`Error::NoHermiteSolution`] when no curve of the profile meets the data;
+    /// [`Error::NotConverged`] when the default work cap runs out (see
+    /// [`solve_with`](Self::solve_with)).
     pub fn solve(&self, profile: &Profile) -> Result<IntrinsicSeg, Error> {
+        self.solve_with(profile, &SolveOptions::default())
+    }
+
+    /// [`solve`](Self::solve) with an iteration cap: `options.max_iterations` (the other
+    /// fields are not used; the Newton tolerance is fixed).
+    ///
+    /// The cap counts Newton iterations over every attempt (the direct one and each step of
+    /// the homotopy), and it also bounds the work: every evaluation of the residual
+    /// integrates `θ` with a quadrature whose size grows with the turning (and with the
+    /// spread of the weights of a rational profile), so a solve evaluates at most
+    /// `max_iterations ×` [`NODES_PER_ITERATION`] quadrature nodes in all, line-search steps
+    /// and tables included. The time of a solve is therefore proportional to the cap (at
+    /// most about 0.1 s for the default 2000 on one core).
+    ///
+    /// # Errors
+    ///
+    /// As [`solve`](Self::solve); [`Error::NotConverged`] with the Newton iterations done and
+    /// the smallest residual reached (position relative to the chord, angle in radians) when
+    /// the cap runs out — typically a homotopy that follows the solutions out to turnings
+    /// of thousands of radians, or weights spread over hundreds of orders of magnitude.
+    pub fn solve_with(
+        &self,
+        profile: &Profile,
+        options: &SolveOptions,
+    ) -> Result<IntrinsicSeg, Error> {
         let problem = Problem::new(self, profile)?;
-        let u = problem.solve()?;
+        let u = problem.solve(options.max_iterations)?;
         let seg = problem.segment(&u)?;
         let error = self.end_error(&seg);
         if error.is_nan() || error > END_TOLERANCE {
@@ -430,7 +466,7 @@ impl Problem {
         ]
     }
 
-    fn solve(&self) -> Result<[f64; 3], Error> {
+    fn solve(&self, max_iterations: usize) -> Result<[f64; 3], Error> {
         let no_clothoid = Error::NoHermiteSolution {
             reason: "no clothoid meets the G1 data, so the solver has no start",
         };
@@ -440,11 +476,18 @@ impl Problem {
         }
         // Newton's method on the requested profile, from the clothoid of Bertolazzi &
         // Frego's initial guess (it meets the end angles, not quite the end point).
-        let mut work = Work::default();
+        let mut work = Work {
+            budget: max_iterations.saturating_mul(NODES_PER_ITERATION),
+            max_iterations,
+            ..Work::default()
+        };
         if let Some(c) = clothoid::approximate(self.phi0, self.delta) {
             let start = self.clothoid_start(c);
             if let Some(u) = newton(&self.target, self.phi0, self.delta, start, &mut work) {
                 return Ok(u);
+            }
+            if work.exhausted() {
+                return Err(self.not_converged(&work, work.last));
             }
         }
         // Homotopy from the linear profile (solved by the clothoid) to the target.
@@ -470,6 +513,9 @@ impl Problem {
             let rows = Rows::blend(&linear, &self.target, next);
             let solved = newton(&rows, self.phi0, self.delta, guess, &mut work)
                 .or_else(|| newton(&rows, self.phi0, self.delta, u, &mut work));
+            if work.exhausted() {
+                return Err(self.not_converged(&work, u));
+            }
             match solved {
                 Some(v) => {
                     prev = Some((lambda, u));
@@ -489,6 +535,38 @@ impl Problem {
             }
         }
         Ok(u)
+    }
+
+    /// [`Error::NotConverged`] after the work cap ran out, with the Newton iterations done
+    /// and the residual of the requested profile at `u` (the last point reached on the way).
+    fn not_converged(&self, work: &Work, u: [f64; 3]) -> Error {
+        // One more evaluation, allowed an eighth of the cap (else the residual is reported
+        // as infinite: the point is too far out to be worth integrating).
+        let mut w = Work {
+            budget: work.budget / 8,
+            max_iterations: 1,
+            ..Work::default()
+        };
+        self.target.scaled(&u, &mut w.scaled);
+        let bound = w.scaled.iter().fold(0.0f64, |m, a| m.max(a.abs()));
+        let residual = if bound <= MAX_TURNING
+            && u.iter().all(|x| x.is_finite())
+            && w.ensure(
+                &self.target,
+                Rule::new(bound, self.target.weights.as_deref()),
+            ) {
+            norm(&w.residual(self.phi0, self.delta, &u).0)
+        } else {
+            f64::INFINITY
+        };
+        Error::NotConverged {
+            iterations: work.iterations,
+            residual: if residual.is_nan() {
+                f64::INFINITY
+            } else {
+                residual
+            },
+        }
     }
 
     /// The segment in the data's frame for the unknowns `u`.
@@ -575,24 +653,49 @@ struct Work {
     scaled: Vec<f64>,
     /// Scratch: the polynomial antiderivatives, or the weighted numerators.
     anti: [Vec<f64>; 3],
+    /// The work cap: quadrature nodes that may still be evaluated in all.
+    budget: usize,
+    /// Quadrature nodes evaluated so far (residuals and tables).
+    spent: usize,
+    /// Newton iterations so far, and their cap.
+    iterations: usize,
+    max_iterations: usize,
+    /// The last point Newton's method accepted.
+    last: [f64; 3],
 }
 
 impl Work {
+    /// Whether the work cap has run out.
+    fn exhausted(&self) -> bool {
+        self.spent > self.budget || self.iterations >= self.max_iterations
+    }
+
     /// Makes sure the table of `rows` is at least as fine as `rule` (and not needlessly
-    /// finer): re-tabulates when it is not.
-    fn ensure(&mut self, rows: &Rows, rule: Rule) {
+    /// finer): re-tabulates when it is not. `false` (and the cap marked as run out) when the
+    /// table and one residual with it would overrun the work cap.
+    fn ensure(&mut self, rows: &Rows, rule: Rule) -> bool {
         if let Some(have) = self.rule {
             let fine_enough = have.coeffs.len() >= rule.coeffs.len() && have.pieces >= rule.pieces;
             if fine_enough && have.len() <= 4 * rule.len() {
-                return;
+                return true;
             }
         }
+        let cost = (TABLE_COST + 1).saturating_mul(rule.len());
+        if self.spent.saturating_add(cost) > self.budget {
+            self.spent = self.budget.saturating_add(1);
+            self.rule = None;
+            return false;
+        }
         self.tabulate(rows, rule);
+        true
     }
 
     /// Tabulates the direction functions of `rows` with `rule`.
     fn tabulate(&mut self, rows: &Rows, rule: Rule) {
         self.rule = Some(rule);
+        // A table costs a few times a residual per node (Bernstein numerators and, for
+        // weights, the spectral integration matrix): measured about 3.5 times.
+        self.spent = self.spent.saturating_add(TABLE_COST * rule.len());
         self.nodes.clear();
         self.nodes.reserve(rule.len());
         let h = 1.0 / rule.pieces as f64;
@@ -660,7 +763,8 @@ impl Work {
     }
 
     /// Residual and Jacobian at `u`: `e = [Σ A_i M_i(1) − δ, L X − 1, L Y]`.
-    fn residual(&self, phi0: f64, delta: f64, u: &[f64; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
+    fn residual(&mut self, phi0: f64, delta: f64, u: &[f64; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
+        self.spent = self.spent.saturating_add(self.nodes.len());
         let (mut x, mut y) = (0.0, 0.0);
         let (mut dx, mut dy) = ([0.0; 3], [0.0; 3]);
         for node in &self.nodes {
@@ -734,10 +838,11 @@ fn newton(
         if bound.is_nan() || bound > MAX_TURNING {
             return None;
         }
-        work.ensure(rows, Rule::new(bound, rows.weights.as_deref()));
-        Some(())
+        work.ensure(rows, Rule::new(bound, rows.weights.as_deref()))
+            .then_some(())
     };
     work.rule = None;
+    work.last = u;
     pieces_for(&u, work)?;
     let (mut e, mut j) = work.residual(phi0, delta, &u);
     let mut r = norm(&e);
@@ -745,6 +850,10 @@ fn newton(
         if r <= RESIDUAL_TOLERANCE {
             return Some(u);
         }
+        if work.exhausted() {
+            return None;
+        }
+        work.iterations += 1;
         let step = solve3(j, e)?;
         // Trust region: no control curvature's turning changes by more than
         // MAX_STEP_TURNING and L by no more than half, so that Newton's method moves to a
@@ -760,12 +869,16 @@ fn newton(
         }
         let mut accepted = false;
         for _ in 0..LINE_SEARCH_STEPS {
+            if work.exhausted() {
+                return None;
+            }
             let v = [u[0] + t * step[0], u[1] + t * step[1], u[2] + t * step[2]];
             if v[2] > 0.0 && v.iter().all(|x| x.is_finite()) && pieces_for(&v, work).is_some() {
                 let (e2, j2) = work.residual(phi0, delta, &v);
                 let r2 = norm(&e2);
                 if r2 < (1.0 - 1e-4 * t) * r {
                     u = v;
+                    work.last = v;
                     e = e2;
                     j = j2;
                     r = r2;

@@ -39,7 +39,9 @@ mod segment;
 mod spline;
 mod viable;
 
-pub use hermite::{Control, Hermite, HermiteEnd, Profile, Turning, END_TOLERANCE};
+pub use hermite::{
+    Control, Hermite, HermiteEnd, Profile, Turning, END_TOLERANCE, NODES_PER_ITERATION,
+};
 pub use quad::PIECE_TURN;
 pub use segment::{IntrinsicDeriv, IntrinsicDeriv2, IntrinsicSeg, MAX_TURNING};
 pub use spline::{IntrinsicSpline, SplineOptions};

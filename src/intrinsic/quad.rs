@@ -48,7 +48,8 @@ impl Rule {
             let (lo, hi) = w.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &w| {
                 (lo.min(w), hi.max(w))
             });
-            pieces = pieces.max(2.0 * (hi / lo).log2().ceil());
+            // log₂ of the ratio as a difference: `hi / lo` overflows for subnormal weights.
+            pieces = pieces.max(2.0 * (hi.log2() - lo.log2()).ceil());
         }
         Rule {
             pieces: pieces.min(MAX_PIECES) as usize,

@@ -65,8 +65,9 @@ impl IntrinsicSpline {
     ///
     /// The εκ solver's errors (too few, non-finite or repeated points, collinear closed
     /// input, a bad shape), [`Error::InvalidOption`] for a degree below 3 or given angle or
-    /// curvature lists of the wrong length, and [`Error::NoHermiteSolution`] when a span has
-    /// no solution up to `max_degree`.
+    /// curvature lists of the wrong length, and [`Error::NoHermiteSolution`] (or
+    /// [`Error::NotConverged`], the Hermite solver's cap) when a span has no solution up to
+    /// `max_degree`.
     pub fn new(
         points: &[Point],
         closed: bool,
@@ -136,7 +137,9 @@ fn solve_span(h: &Hermite, options: &SplineOptions) -> Result<IntrinsicSeg, Erro
     loop {
         match h.solve(&Profile::free(degree)) {
             Ok(seg) => return Ok(seg),
-            Err(Error::NoHermiteSolution { .. }) if degree + 2 <= options.max_degree => {
+            Err(Error::NoHermiteSolution { .. } | Error::NotConverged { .. })
+                if degree + 2 <= options.max_degree =>
+            {
                 degree += 2;
             }
             Err(e) => return Err(e),

@@ -9,7 +9,8 @@ use crate::Error;
 /// What a G2 Hermite problem gives for one pair of end curvatures.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Viability {
-    /// No segment of the profile meets the data ([`Error::NoHermiteSolution`]).
+    /// No segment of the profile meets the data ([`Error::NoHermiteSolution`]), or the
+    /// solver's iteration cap ran out before one was found ([`Error::NotConverged`]).
     NoSolution,
     /// A segment meets the data, but its curvature is not monotone or changes sign.
     Solved,
@@ -88,7 +89,9 @@ pub fn viable_region(
             cells.push(match h.solve(&profile) {
                 Ok(seg) if seg.is_monotone() && seg.inflections().is_empty() => Viability::Monotone,
                 Ok(_) => Viability::Solved,
-                Err(Error::NoHermiteSolution { .. }) => Viability::NoSolution,
+                Err(Error::NoHermiteSolution { .. } | Error::NotConverged { .. }) => {
+                    Viability::NoSolution
+                }
                 Err(e) => return Err(e),
             });
         }

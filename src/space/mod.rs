@@ -77,7 +77,9 @@ pub enum Replace {
     /// No replacement: the quadratic κ-curve itself (G1 with equal |κ| at the joints).
     None,
     /// Replace `t ∈ [t1, 1]` of the segment before each joint and `t ∈ [0, t2]` of the one
-    /// after it (seed 004 §3.2), with `0 ≤ t1 < 1` and `0 < t2 ≤ 1`; each range is cut at the
+    /// after it (seed 004 §3.2), with `0 ≤ t1 ≤ 1 − MIN_REPLACED` and
+    /// `MIN_REPLACED ≤ t2 ≤ 1` ([`MIN_REPLACED`] `= 10⁻³`, other values are
+    /// [`Error::InvalidOption`](crate::Error::InvalidOption)); each range is cut at the
     /// neighbouring input point's parameter (see the [module docs](self)).
     Partial {
         /// Start of the replaced piece on the segment before the joint.
@@ -100,7 +102,8 @@ impl Replace {
     pub const FULL: Replace = Replace::Partial { t1: 0.0, t2: 1.0 };
 
     /// Replace the fraction `r` of the parameter range on each side of every joint:
-    /// `t1 = 1 − r`, `t2 = r` (`r = 0` is [`Replace::None`]). Validated when used.
+    /// `t1 = 1 − r`, `t2 = r` (`r = 0` is [`Replace::None`]). Validated when used: other
+    /// than 0, `r` must lie in `[MIN_REPLACED, 1]`.
     pub const fn fraction(r: f64) -> Replace {
         if r == 0.0 {
             Replace::None
@@ -115,6 +118,20 @@ impl Default for Replace {
         Replace::DEFAULT
     }
 }
+
+/// The shortest replaced range, `1 − t1` and `t2` of [`Replace::Partial`]: `10⁻³` of the
+/// quadratic's parameter range.
+///
+/// The quartic takes its end tangent and curvature from the replaced pieces' control points
+/// (seed 004 eqs. 11–18): the end handle `Q3 Q4` is a multiple of `C − Q4`, which is about
+/// `t2 |P3 − P2|` long, and the curvature comes from second differences over that length.
+/// Coordinates rounded to `ε |p|` therefore turn the end tangent by about
+/// `ε |p| / (t2 |P3 − P2|)` and change the end curvature by a relative
+/// `ε |p| / (t2² |P3 − P2|)` or so: at `t2 = 3·10⁻¹⁴` the piece is a few hundred units in the
+/// last place long and no quartic can be G1 there in `f64`. Ranges of at least `10⁻³` keep
+/// every side (after the cut at an input point, at least a tenth of that, see
+/// [`PeakAtJoint`]) long enough for G1 and G2 to within `10⁻⁸`.
+pub const MIN_REPLACED: f64 = 1e-3;
 
 /// Where the quartic's middle control point `Q2 = (1−γ) c_{i,1} + γ c_{i+1,1}` lies on the
 /// line through the middle control points of the two quadratics (seed 004 eqs. 6, 14).

@@ -7,7 +7,7 @@ use crate::analysis::{
 use crate::{Error, Point3, Scheme, Shape, Solver3, Spline3, Vec3};
 
 use super::replace::{self, GammaPrime, Quad};
-use super::{Gamma, PeakAtJoint, Replace, SpaceOptions};
+use super::{Gamma, PeakAtJoint, Replace, SpaceOptions, MIN_REPLACED};
 
 /// A G2 space curve through 3D points: the quadratic κ-curve with a quartic at every joint
 /// (seed 004). See the [module docs](super).
@@ -21,6 +21,8 @@ pub struct SpaceCurve {
     peaks: Vec<(usize, f64)>,
     /// Input points given up at joints ([`PeakAtJoint::Replace`]): κ-segment and distance.
     missed: Vec<(usize, f64)>,
+    /// Chain joints (index of the segment before them) where the κ-curve's joint is kept.
+    kept: Vec<usize>,
     /// The κ-curve the replacement started from.
     base: Spline3,
 }
@@ -130,7 +132,8 @@ impl SpaceCurve {
     /// # Errors
     ///
     /// [`Error::InvalidOption`] for an εκ-curve (the replacement needs quadratics), for a
-    /// [`Replace::Partial`] outside `0 ≤ t1 < 1`, `0 < t2 ≤ 1`, and for a
+    /// [`Replace::Partial`] outside `0 ≤ t1 ≤ 1 − MIN_REPLACED`, `MIN_REPLACED ≤ t2 ≤ 1`
+    /// ([`MIN_REPLACED`](super::MIN_REPLACED)), and for a
     /// [`Gamma::PerJoint`] list whose length is not the number of joints;
     /// [`Error::GammaOutOfRange`] for a `γ` outside its joint's interval.
     pub fn from_spline(spline: Spline3, options: &SpaceOptions) -> Result<SpaceCurve, Error> {
@@ -186,6 +189,17 @@ impl SpaceCurve {
                 }
             }
         }
+        // Per κ-segment the ends of the piece left between its two joints' ranges; a piece
+        // shorter than `MIN_REPLACED` is absorbed (both quartics meet at the split point):
+        // its curvature, from control points that nearly coincide, would be rounding.
+        let piece_ends = |k: usize| -> (f64, f64) {
+            let (lo, hi) = (t2_req.min(split[k]), t1_req.max(split[k]));
+            if has_left(k) && has_right(k) && hi - lo < MIN_REPLACED {
+                (split[k], split[k])
+            } else {
+                (lo, hi)
+            }
+        };
         // Per joint: the replaced ranges, cut at the split points, and the quartic.
         let mut joints = Vec::with_capacity(joint_count);
         let mut quartics: Vec<Option<[Point3; 5]>> = Vec::with_capacity(joint_count);
@@ -196,7 +210,7 @@ impl SpaceCurve {
             let (t1, t2) = if kept[j] {
                 (1.0, 0.0)
             } else {
-                (t1_req.max(split[j]), t2_req.min(split[next]))
+                (piece_ends(j).1, piece_ends(next).0)
             };
             let mut joint = Joint {
                 before: j,
@@ -255,6 +269,7 @@ impl SpaceCurve {
         let mut segments = Vec::with_capacity(n + joint_count);
         let mut pieces = Vec::with_capacity(n + joint_count);
         let mut peaks = Vec::with_capacity(n);
+        let mut kept_chain = Vec::new();
         for j in 0..n {
             let prev = if closed {
                 Some((j + n - 1) % n)
@@ -299,13 +314,32 @@ impl SpaceCurve {
                 }
                 segments.push(SpaceBez::quartic(q[0], q[1], q[2], q[3], q[4]));
                 pieces.push(Piece::Quartic { joint: j });
+            } else if j < joint_count {
+                // A kept joint: it ends the last segment so far (for the first joint of a
+                // closed curve whose quadratic the quartic before it took whole, the last
+                // segment of the chain, fixed below).
+                kept_chain.push(segments.len().wrapping_sub(1));
             }
         }
+        for k in &mut kept_chain {
+            if *k == usize::MAX {
+                *k = segments.len() - 1;
+            }
+        }
+        kept_chain.sort_unstable();
         // Points given up: the nearest point of the quartic that replaced them.
         let mut missed = Vec::with_capacity(given_up.len());
         for &j in &given_up {
             let p = replace::quad_eval(&quads[j], t_max[j]);
-            let mut best = (usize::MAX, 0.0, f64::INFINITY);
+            // Where the point is now: on its own quadratic piece, if the joint it sits at
+            // turned out to be kept (no quartic exists there).
+            let (seg, t) = peaks[j];
+            let here = if seg == usize::MAX || !(0.0..=1.0).contains(&t) {
+                f64::INFINITY
+            } else {
+                segments[seg].eval(t).distance(p)
+            };
+            let mut best = (usize::MAX, 0.0, here);
             let prev = if closed {
                 Some((j + n - 1) % n)
             } else {
@@ -340,6 +374,7 @@ impl SpaceCurve {
             joints,
             peaks,
             missed,
+            kept: kept_chain,
             base: spline,
         })
     }
@@ -385,6 +420,15 @@ impl SpaceCurve {
     /// interpolated.
     pub fn missed_points(&self) -> &[(usize, f64)] {
         &self.missed
+    }
+
+    /// The joints of the chain where the κ-curve's own joint is kept (no replacement was
+    /// asked for, [`PeakAtJoint::Keep`] kept an input point there, or a quadratic stalls at
+    /// it): each as the index of the segment before it, as in the `before` of
+    /// [`continuity`](Self::continuity). These joints are G1 with equal |κ| but not G2 (the
+    /// curvature vectors lie in the two quadratics' planes); every other joint is G2.
+    pub fn kept_joints(&self) -> &[usize] {
+        &self.kept
     }
 
     /// The number of segments, `n`: the curve's parameter `u` runs over `[0, n]`.
@@ -591,15 +635,17 @@ fn joint_lambda(left: &Quad, right: &Quad) -> f64 {
     }
 }
 
+/// Checks a [`Replace`] against the documented range: `0 ≤ t1 ≤ 1 − MIN_REPLACED`,
+/// `MIN_REPLACED ≤ t2 ≤ 1` (see [`MIN_REPLACED`](super::MIN_REPLACED)).
 fn validate_replace(replace: Replace) -> Result<(), Error> {
     match replace {
         Replace::None => Ok(()),
         Replace::Partial { t1, t2 } => {
-            if (0.0..1.0).contains(&t1) && t2 > 0.0 && t2 <= 1.0 {
+            if t1 >= 0.0 && 1.0 - t1 >= MIN_REPLACED && (MIN_REPLACED..=1.0).contains(&t2) {
                 Ok(())
             } else {
                 Err(Error::InvalidOption(
-                    "the replaced range needs 0 <= t1 < 1 and 0 < t2 <= 1",
+                    "the replaced range needs 0 <= t1 <= 1 - 1e-3 and 1e-3 <= t2 <= 1",
                 ))
             }
         }

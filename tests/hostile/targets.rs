@@ -243,7 +243,7 @@ pub fn space(data: &[u8]) {
     let joints = if closed {
         points.len()
     } else {
-        points.len().saturating_sub(2)
+        points.len().saturating_sub(3)
     };
     let gamma = match g.below(8) {
         0 => Gamma::Optimized,
