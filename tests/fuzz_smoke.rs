@@ -174,11 +174,11 @@ fn fuzz_smoke_font_compiled() {
     }
 }
 
-/// The reproducers of findings not fixed yet (`tests/fuzz_seeds/<target>/known/`): the
-/// B-spline maximum next to cusps, κ-space joints with extreme replacement parameters,
-/// εκ-trig peaks that the oracle's local probe does not see as maxima, and a Hermite problem
-/// whose homotopy takes half a minute (see the README, "Hostile input"). Run with
-/// `--ignored` to list them; `KAPPA_KNOWN_TARGET=space` (for example) replays one target's.
+/// The reproducers of findings not fixed yet, kept in `tests/fuzz_seeds/<target>/known/`
+/// (none at present: every finding so far is fixed and its reproducer replayed by
+/// [`seeds`]). A new finding that cannot be fixed at once goes there, so that this test
+/// lists it without failing CI. Run with `--ignored`; `KAPPA_KNOWN_TARGET=space` (for
+/// example) replays one target's.
 #[test]
 #[ignore = "known findings, not fixed yet"]
 fn fuzz_known_findings() {
