@@ -931,3 +931,41 @@ mod fixspace_hermite {
         ));
     }
 }
+
+/// `bspline`, found by the ten-minute run on the merged code: nearly collinear closed data
+/// with a point repeated two places apart to within 1e-11 of the size (a near-cusp at the
+/// joint t = 1, next to segments that are straight to within rounding). The maximum at the
+/// end of the curved segment was skipped because `curvature` at the joint sees the straight
+/// one, and the reported maximum (6e-7 at t = 0) was far below |κ| next to the joint.
+mod bspline_near_cusp_next_to_straight {
+    use kappa::BSpline;
+    use kurbo::Point;
+
+    #[test]
+    fn maximum_at_the_end_of_a_curved_segment_next_to_a_straight_one_is_reported() {
+        let pts = [
+            Point::new(-9.844051585496415e-7, -1e-6),
+            Point::new(9.99973178375506e-7, 9.995117187498862e-7),
+            Point::new(-9.844051585596414e-7, -9.999999999963825e-7),
+            Point::new(-4.953161832426341e-6, -4.999023437498866e-6),
+        ];
+        let b = BSpline::new(&pts, true).unwrap();
+        let max = b.max_curvature();
+        assert!(!max.params.is_empty());
+        for &t in &max.params {
+            let k = b.curvature(t).abs();
+            assert!(
+                (k - max.value).abs() <= 1e-9 * max.value,
+                "{t}: {k} vs {max:?}"
+            );
+        }
+        for i in 0..=256 {
+            let t = i as f64 / 64.0;
+            let k = b.curvature(t).abs();
+            assert!(
+                k <= max.value * (1.0 + 1e-9),
+                "|κ({t})| = {k} above {max:?}"
+            );
+        }
+    }
+}

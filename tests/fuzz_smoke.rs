@@ -174,11 +174,11 @@ fn fuzz_smoke_font_compiled() {
     }
 }
 
-/// The reproducers of findings not fixed yet, kept in `tests/fuzz_seeds/<target>/known/`
-/// (none at present: every finding so far is fixed and its reproducer replayed by
-/// [`seeds`]). A new finding that cannot be fixed at once goes there, so that this test
-/// lists it without failing CI. Run with `--ignored`; `KAPPA_KNOWN_TARGET=space` (for
-/// example) replays one target's.
+/// The reproducers of findings not fixed yet, kept in `tests/fuzz_seeds/<target>/known/`:
+/// at present four `bspline` inputs (nearly collinear data whose sampled |κ| exceeds the
+/// reported maximum; see the README, "Hostile input"). A new finding that cannot be fixed at
+/// once goes there, so that this test lists it without failing CI. Run with `--ignored`;
+/// `KAPPA_KNOWN_TARGET=bspline` (for example) replays one target's.
 #[test]
 #[ignore = "known findings, not fixed yet"]
 fn fuzz_known_findings() {

@@ -848,11 +848,17 @@ impl<P: BSplinePoint> BSpline<P> {
                 // parameter, so that the value is |κ| there exactly. At a cusp, or where
                 // r′ = 0 with a finite limit, the value is the analysis' limit, not the 0 of
                 // `curvature`.
-                let t = i as f64 + u;
-                if !straight[i] && straight[self.locate(t).0] {
-                    // A joint with a straight segment, where `curvature` is 0 (not a maximum
-                    // of this curved one).
-                    continue;
+                let mut t = i as f64 + u;
+                if t > 0.0 && !straight[i] && straight[self.locate(t).0] {
+                    // The end of this curved segment at a joint with a straight one, where
+                    // `curvature` sees the straight one (0). The curved side's value is
+                    // reported at the last parameter before the joint, which `curvature`
+                    // evaluates on this segment (a near-cusp of nearly collinear data has
+                    // its maximum there; skipping it under-reported the maximum).
+                    t = f64::from_bits(t.to_bits() - 1);
+                    if straight[self.locate(t).0] {
+                        continue;
+                    }
                 }
                 let k = self.local_curvature(t).abs();
                 let v = if m.value.is_infinite() || (k == 0.0 && m.value > 0.0) {
