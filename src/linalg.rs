@@ -4,6 +4,21 @@
 //! cyclic (wrap-around) banded systems, and (cyclic) tridiagonal systems with vector
 //! right-hand sides. All buffers are owned by the structs and reused between solves.
 
+/// Partial pivoting: the index of the candidate of largest magnitude (the first of equals,
+/// `first` winning ties), or `None` if that magnitude is zero or not finite.
+#[inline(always)]
+fn pivot(first: (usize, f64), rest: impl Iterator<Item = (usize, f64)>) -> Option<usize> {
+    let (mut p, mut best) = (first.0, first.1.abs());
+    for (i, v) in rest {
+        let v = v.abs();
+        if v > best {
+            best = v;
+            p = i;
+        }
+    }
+    (best > 0.0 && best.is_finite()).then_some(p)
+}
+
 /// A banded matrix with `kl` sub- and `ku` super-diagonals, factored in place by LU with
 /// partial pivoting (as LAPACK's `dgbtf2`). Row `i` stores the columns
 /// `i - kl ..= i + kl + ku`; the extra `kl` columns hold the fill-in of pivoting.
@@ -70,18 +85,13 @@ impl BandLu {
             let (head, tail) = self.a.split_at_mut((k + 1) * W);
             let prow = &mut head[k * W..];
             // Row `k + 1 + d` holds column `k` at offset `KL - 1 - d`.
-            let mut p = 0;
-            let mut best = prow[KL].abs();
-            for (d, row) in tail.chunks_exact(W).take(KL).enumerate() {
-                let v = row[KL - 1 - d].abs();
-                if v > best {
-                    best = v;
-                    p = d + 1;
-                }
-            }
-            if !(best > 0.0 && best.is_finite()) {
+            let below = tail.chunks_exact(W).take(KL).enumerate();
+            let Some(p) = pivot(
+                (0, prow[KL]),
+                below.map(|(d, row)| (d + 1, row[KL - 1 - d])),
+            ) else {
                 return false;
-            }
+            };
             self.piv[k] = k + p;
             if p != 0 {
                 let other = &mut tail[(p - 1) * W..p * W];
@@ -118,18 +128,10 @@ impl BandLu {
         let (n, kl, w) = (self.n, self.kl, self.w);
         let imax = (k + kl).min(n - 1);
         let len = (k + kl + self.ku).min(n - 1) - k + 1;
-        let mut p = k;
-        let mut best = self.a[k * w + kl].abs();
-        for i in k + 1..=imax {
-            let v = self.a[i * w + kl + k - i].abs();
-            if v > best {
-                best = v;
-                p = i;
-            }
-        }
-        if !(best > 0.0 && best.is_finite()) {
+        let below = (k + 1..=imax).map(|i| (i, self.a[i * w + kl + k - i]));
+        let Some(p) = pivot((k, self.a[k * w + kl]), below) else {
             return false;
-        }
+        };
         self.piv[k] = p;
         // Row k's columns k.. start at offset kl; row i's at kl + k - i.
         let rk = k * w + kl;
@@ -389,18 +391,10 @@ impl DenseLu {
     pub(crate) fn factor(&mut self) -> bool {
         let n = self.n;
         for k in 0..n {
-            let mut p = k;
-            let mut best = self.a[k * n + k].abs();
-            for i in k + 1..n {
-                let v = self.a[i * n + k].abs();
-                if v > best {
-                    best = v;
-                    p = i;
-                }
-            }
-            if !(best > 0.0 && best.is_finite()) {
+            let below = (k + 1..n).map(|i| (i, self.a[i * n + k]));
+            let Some(p) = pivot((k, self.a[k * n + k]), below) else {
                 return false;
-            }
+            };
             self.piv[k] = p;
             if p != k {
                 // Swap only the active columns: the multipliers of earlier columns stay, as
