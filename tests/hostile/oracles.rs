@@ -727,14 +727,32 @@ fn check_bspline_parts<const D: usize>(
     }
 }
 
-/// Checks the answer of a 2D B-spline interpolation and its maximum curvature.
-pub fn check_bspline2d(
-    points: &[Point],
+/// A point type the B-spline oracles read as coordinates.
+pub trait Coordinates<const D: usize>: kappa::BSplinePoint + Copy {
+    /// The coordinates.
+    fn array(self) -> [f64; D];
+}
+
+impl Coordinates<2> for Point {
+    fn array(self) -> [f64; 2] {
+        [self.x, self.y]
+    }
+}
+
+impl Coordinates<3> for Point3 {
+    fn array(self) -> [f64; 3] {
+        [self.x, self.y, self.z]
+    }
+}
+
+/// Checks the answer of a B-spline interpolation (2D or 3D) and its maximum curvature.
+pub fn check_bspline<P: Coordinates<D>, const D: usize>(
+    points: &[P],
     closed: bool,
-    result: &Result<kappa::BSpline, Error>,
+    result: &Result<kappa::BSpline<P>, Error>,
     what: &str,
 ) {
-    let pts = arrays(points);
+    let pts: Vec<[f64; D]> = points.iter().map(|&p| p.array()).collect();
     let s = match result {
         Ok(s) => s,
         Err(e) => {
@@ -742,22 +760,31 @@ pub fn check_bspline2d(
             return;
         }
     };
-    let a = |p: Point| [p.x, p.y];
-    let segs: Vec<[[f64; 2]; 4]> = (0..s.segment_count())
-        .map(|i| s.segment_points(i).unwrap().map(a))
+    let segs: Vec<[[f64; D]; 4]> = (0..s.segment_count())
+        .map(|i| s.segment_points(i).unwrap().map(P::array))
         .collect();
-    let control: Vec<[f64; 2]> = s.control_points().iter().map(|&p| a(p)).collect();
+    let control: Vec<[f64; D]> = s.control_points().iter().map(|&p| p.array()).collect();
     let max = s.max_curvature();
     check_bspline_parts(
         &pts,
         closed,
         &segs,
-        |t| a(s.eval(t)),
+        |t| s.eval(t).array(),
         |t| s.curvature(t),
         &max,
         &control,
         what,
     );
+}
+
+/// Checks the answer of a 2D B-spline interpolation and its maximum curvature.
+pub fn check_bspline2d(
+    points: &[Point],
+    closed: bool,
+    result: &Result<kappa::BSpline, Error>,
+    what: &str,
+) {
+    check_bspline(points, closed, result, what);
 }
 
 /// Checks the answer of a 3D B-spline interpolation and its maximum curvature.
@@ -767,30 +794,7 @@ pub fn check_bspline3d(
     result: &Result<kappa::BSpline3, Error>,
     what: &str,
 ) {
-    let pts = arrays3(points);
-    let s = match result {
-        Ok(s) => s,
-        Err(e) => {
-            assert!(check_point_error(e, &pts, closed, what), "{what}: {e:?}");
-            return;
-        }
-    };
-    let a = |p: Point3| [p.x, p.y, p.z];
-    let segs: Vec<[[f64; 3]; 4]> = (0..s.segment_count())
-        .map(|i| s.segment_points(i).unwrap().map(a))
-        .collect();
-    let control: Vec<[f64; 3]> = s.control_points().iter().map(|&p| a(p)).collect();
-    let max = s.max_curvature();
-    check_bspline_parts(
-        &pts,
-        closed,
-        &segs,
-        |t| a(s.eval(t)),
-        |t| s.curvature(t),
-        &max,
-        &control,
-        what,
-    );
+    check_bspline(points, closed, result, what);
 }
 
 /// Checks the answer of a κ-space curve.
