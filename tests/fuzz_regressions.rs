@@ -969,3 +969,84 @@ mod bspline_near_cusp_next_to_straight {
         }
     }
 }
+
+/// `bspline`, found by the ten-minute run on the merged code: nearly collinear open data
+/// (|κ| about 1e-5 of 1/size, well above the rounding of the points). The tighter bounds
+/// on eight pieces of a segment took their end values from the pieces' control points, whose
+/// second differences are 1/64 of the segment's while their rounding is not: an end value
+/// 10 % above the true |κ| there counted as attained and pruned the segments that held the
+/// maximum (reported 8.06e-6 at t ≈ 0.51; |κ(10)| = 1.36e-5). The pieces now come from the
+/// segment's derivatives.
+mod bspline_piece_bounds_from_derivatives {
+    use kappa::{BSpline, Point3};
+    use kurbo::Point;
+
+    fn check(max_value: f64, params: &[f64], curvature: impl Fn(f64) -> f64, end: f64) {
+        assert!(!params.is_empty());
+        for &t in params {
+            let k = curvature(t).abs();
+            assert!((k - max_value).abs() <= 1e-9 * max_value, "{t}: {k} vs {max_value}");
+        }
+        let mut t = 0.0;
+        while t <= end {
+            let k = curvature(t).abs();
+            assert!(k <= max_value * (1.0 + 1e-9), "|κ({t})| = {k} above {max_value}");
+            t += 1.0 / 64.0;
+        }
+    }
+
+    #[test]
+    fn nearly_collinear_open_2d() {
+        let raw = [
+            (1.353574724251771e-6, 7.318652860661653e-7),
+            (-6.392003676479683e-7, -4.7654163895094337e-7),
+            (-4.624750551447447e-6, -2.8933554889851607e-6),
+            (-1.2595850919046403e-5, -7.726983189053596e-6),
+            (-2.8538051654244315e-5, -1.7394238589190468e-5),
+            (-4.448025238030497e-5, -2.7061493980190083e-5),
+            (-6.042245309722837e-5, -3.672874936205244e-5),
+            (-7.636465380501451e-5, -4.6396004734777546e-5),
+            (-9.23068545036634e-5, -5.6063260098365394e-5),
+            (-0.00010824905519317505, -6.573051545281599e-5),
+            (-0.00012419125587354943, -7.539777079812934e-5),
+            (-0.00014013345654478656, -8.506502613430544e-5),
+            (-0.00015607565720688645, -9.473228146683439e-5),
+            (-0.00018796005853108255, -0.00011406679213188865),
+            (-0.00025172886117947474, -0.00015273581346199718),
+            (-0.0003792664664762591, -0.00023007385612221424),
+            (-0.0006343416770698278, -0.0003847499414426483),
+            (-0.0007618792823666121, -0.00046208798410286536),
+            (-0.0010169544929601807, -0.0006167640694232995),
+        ];
+        let pts: Vec<Point> = raw.iter().map(|&(x, y)| Point::new(x, y)).collect();
+        let b = BSpline::new(&pts, false).unwrap();
+        let max = b.max_curvature();
+        // The joint t = 10 holds the maximum (exact |κ| of the control points: 1.35960e-5).
+        assert!(max.value > 1.3e-5, "{max:?}");
+        check(max.value, &max.params, |t| b.curvature(t), b.param_range().end);
+    }
+
+    #[test]
+    fn nearly_collinear_open_3d() {
+        let raw = [
+            (4.3137600702032806e-7, 4.313725490196078e-7, 4.313725490196078e-7),
+            (2.2745401976337988e-7, 2.2745098039215693e-7, 4.305759804394506e-7),
+            (-1.803899547505165e-7, -1.8039215686274485e-7, 4.2898284327913617e-7),
+            (-9.960779037782728e-7, -9.96078431372512e-7, 4.257965689585438e-7),
+            (-2.6274538018337856e-6, -2.627450980392046e-6, 4.19424020317359e-7),
+            (-5.890205597944812e-6, -5.890196078431115e-6, 4.0667892303498945e-7),
+            (-1.2415709190166864e-5, -1.2415686274509252e-5, 3.8118872847025033e-7),
+            (-2.5466716374610968e-5, -2.5466666666665526e-5, 3.302083393407721e-7),
+            (-3.851772355744723e-5, -3.851764705518271e-5, 2.792279538583527e-7),
+            (-6.461973792311976e-5, -6.46196078322171e-5, 1.7726718289351382e-7),
+            (-0.00011682376665446481, -0.00011682352938628586, -2.6654359036163887e-8),
+            (-0.0002212318241171549, -0.0002212313724944234, -4.344974428955193e-7),
+            (-0.00043004793904253505, -0.00043004705871069844, -1.2501836106142301e-6),
+            (-0.0002212318241171549, -0.0002212313724944234, -4.344974428955193e-7),
+        ];
+        let pts: Vec<Point3> = raw.iter().map(|&(x, y, z)| Point3::new(x, y, z)).collect();
+        let b = BSpline::new(&pts, false).unwrap();
+        let max = b.max_curvature();
+        check(max.value, &max.params, |t| b.curvature(t), b.param_range().end);
+    }
+}

@@ -328,42 +328,46 @@ const BOUND_PIECES: usize = 8;
 
 /// [`CurvatureBounds`] of a cubic split into `pieces` equal parts (|κ| does not depend on the
 /// parameterization, so each piece, reparameterized to `[0, 1]`, bounds its part).
+///
+/// Each piece's hodograph and second derivative come from the segment's own (blossoming the
+/// quadratic `r′` over the piece, evaluating the linear `r″` at its ends), not from positions
+/// of the piece: the piece's second differences of positions are `1/pieces²` of the segment's
+/// while the rounding of positions is not, so on a nearly straight segment they would turn
+/// the normal part of `r″` into noise (an end value 10 % above the true |κ| there, taken as
+/// attained, once pruned the segment that held the maximum). Computed from the derivatives
+/// they are known to a few ε of the segment's `|h|` and `|g|`, the rounding margin the
+/// whole segment's bound already carries. The common factors `1/pieces` of `r′` and
+/// `1/pieces²` of `r″` are left out: |κ| does not see them.
 fn curvature_bounds_split<const D: usize>(p: [[f64; D]; 4], pieces: usize) -> CurvatureBounds {
+    let (h, g) = derivative_coefficients(p);
+    let margin = rounding_margin(&h, &g);
     if pieces <= 1 {
-        return curvature_bounds(p);
+        return bounds_from_derivatives(h, g, margin);
     }
-    // Power form r(t) = a + b t + c t² + d t³ for the piece end points and tangents.
-    let a = p[0];
-    let b: [f64; D] = core::array::from_fn(|k| 3.0 * (p[1][k] - p[0][k]));
-    let c: [f64; D] = core::array::from_fn(|k| 3.0 * (p[2][k] - 2.0 * p[1][k] + p[0][k]));
-    let d: [f64; D] = core::array::from_fn(|k| p[3][k] - 3.0 * (p[2][k] - p[1][k]) - p[0][k]);
-    let at = |t: f64| -> ([f64; D], [f64; D]) {
-        let r = core::array::from_fn(|k| a[k] + t * (b[k] + t * (c[k] + t * d[k])));
-        let v = core::array::from_fn(|k| b[k] + t * (2.0 * c[k] + t * 3.0 * d[k]));
-        (r, v)
+    // r′(u) = Σ B²_i(u) h_i and its blossom r′[u, v]; r″(u) = (1 − u) g₀ + u g₁.
+    let blossom = |u: f64, v: f64| -> [f64; D] {
+        let (w0, w1, w2) = ((1.0 - u) * (1.0 - v), (1.0 - u) * v + u * (1.0 - v), u * v);
+        core::array::from_fn(|k| w0 * h[0][k] + w1 * h[1][k] + w2 * h[2][k])
     };
-    let h = 1.0 / pieces as f64;
+    let second =
+        |u: f64| -> [f64; D] { core::array::from_fn(|k| (1.0 - u) * g[0][k] + u * g[1][k]) };
+    let step = 1.0 / pieces as f64;
     let mut out = CurvatureBounds {
         at_ends: 0.0,
         upper: 0.0,
     };
-    let (mut r0, mut v0) = (p[0], b);
-    for j in 1..=pieces {
-        let (r1, v1) = if j == pieces {
-            (p[3], core::array::from_fn(|k| 3.0 * (p[3][k] - p[2][k])))
+    for j in 0..pieces {
+        let u0 = j as f64 * step;
+        let u1 = if j + 1 == pieces {
+            1.0
         } else {
-            at(j as f64 * h)
+            (j + 1) as f64 * step
         };
-        let q = [
-            r0,
-            core::array::from_fn(|k| r0[k] + h / 3.0 * v0[k]),
-            core::array::from_fn(|k| r1[k] - h / 3.0 * v1[k]),
-            r1,
-        ];
-        let piece = curvature_bounds(q);
+        let hp = [blossom(u0, u0), blossom(u0, u1), blossom(u1, u1)];
+        let gp = [second(u0), second(u1)];
+        let piece = bounds_from_derivatives(hp, gp, margin);
         out.at_ends = out.at_ends.max(piece.at_ends);
         out.upper = out.upper.max(piece.upper);
-        (r0, v0) = (r1, v1);
     }
     out
 }
@@ -377,21 +381,44 @@ pub struct CurvatureBounds {
     upper: f64,
 }
 
-/// [`CurvatureBounds`] of the cubic with control points `p` (any dimension).
-///
-/// With the hodograph `r′ = Σ B²_i h_i`, `h_i = 3(p_{i+1} − p_i)`, and `r″ = Σ B¹_j g_j`,
-/// `g_j = 2(h_{j+1} − h_j)`, the product `r′ × r″` is the cubic Bernstein polynomial with
-/// coefficients `h₀×g₀, (2h₁×g₀ + h₀×g₁)/3, (h₂×g₀ + 2h₁×g₁)/3, h₂×g₁`, so `|r′ × r″|` is at most
-/// the largest of their norms (convex hull property). `|r′|` is at least `min_i h_i · û` for
-/// any unit `û` (the hodograph lies in the convex hull of the `h_i`); the best of
-/// `û ∈ {h₀, h₁, h₂, h₀ + h₂}` normalized is taken. Hence
-/// `|κ| ≤ max_k |c_k| / (min |r′|)³`, tight to first order in the segment's variation.
-fn curvature_bounds<const D: usize>(p: [[f64; D]; 4]) -> CurvatureBounds {
+/// The hodograph `h_i = 3(p_{i+1} − p_i)` and second-derivative coefficients
+/// `g_j = 2(h_{j+1} − h_j)` of the cubic with control points `p`.
+fn derivative_coefficients<const D: usize>(p: [[f64; D]; 4]) -> ([[f64; D]; 3], [[f64; D]; 2]) {
     let h: [[f64; D]; 3] =
         core::array::from_fn(|i| core::array::from_fn(|k| 3.0 * (p[i + 1][k] - p[i][k])));
     let g: [[f64; D]; 2] =
         core::array::from_fn(|j| core::array::from_fn(|k| 2.0 * (h[j + 1][k] - h[j][k])));
-    let dot = |a: [f64; D], b: [f64; D]| (0..D).map(|k| a[k] * b[k]).sum::<f64>();
+    (h, g)
+}
+
+fn dot<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
+    (0..D).map(|k| a[k] * b[k]).sum::<f64>()
+}
+
+/// The rounding of the cross products `h × g` (a few ε `|h| |g|` each, with the segment's
+/// largest `|h_i|` and `|g_j|`): for a segment collinear to within rounding they are that
+/// rounding, and the bound must still hold for the curvature computed from the same
+/// control points.
+fn rounding_margin<const D: usize>(h: &[[f64; D]; 3], g: &[[f64; D]; 2]) -> f64 {
+    let hmax = h.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
+    let gmax = g.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
+    16.0 * f64::EPSILON * hmax * gmax
+}
+
+/// [`CurvatureBounds`] of the cubic whose hodograph has Bernstein coefficients `h` and whose
+/// second derivative has `g` (any common scale of `h` and its square for `g`).
+///
+/// With `r′ = Σ B²_i h_i` and `r″ = Σ B¹_j g_j`, the product `r′ × r″` is the cubic Bernstein
+/// polynomial with coefficients `h₀×g₀, (2h₁×g₀ + h₀×g₁)/3, (h₂×g₀ + 2h₁×g₁)/3, h₂×g₁`, so
+/// `|r′ × r″|` is at most the largest of their norms (convex hull property), plus `margin`
+/// for rounding. `|r′|` is at least `min_i h_i · û` for any unit `û` (the hodograph lies in the
+/// convex hull of the `h_i`); the best of `û ∈ {h₀, h₁, h₂, h₀ + h₂}` normalized is taken. Hence
+/// `|κ| ≤ max_k |c_k| / (min |r′|)³`, tight to first order in the segment's variation.
+fn bounds_from_derivatives<const D: usize>(
+    h: [[f64; D]; 3],
+    g: [[f64; D]; 2],
+    margin: f64,
+) -> CurvatureBounds {
     // |a × b|² = |a|²|b|² − (a·b)² loses accuracy for nearly parallel vectors; the explicit
     // components do not.
     let cross = |a: [f64; D], b: [f64; D]| -> [f64; 3] {
@@ -413,13 +440,7 @@ fn curvature_bounds<const D: usize>(p: [[f64; D]; 4]) -> CurvatureBounds {
     );
     let c1: [f64; 3] = core::array::from_fn(|k| (2.0 * h1g0[k] + h0g1[k]) / 3.0);
     let c2: [f64; 3] = core::array::from_fn(|k| (h2g0[k] + 2.0 * h1g1[k]) / 3.0);
-    // Plus the rounding of the cross products (a few ε |h| |g| each): for a segment
-    // collinear to within rounding they are that rounding, and the bound must still hold for
-    // the curvature computed from the same control points.
-    let hmax = h.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
-    let gmax = g.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
-    let num =
-        norm3(c0).max(norm3(c1)).max(norm3(c2)).max(norm3(c3)) + 16.0 * f64::EPSILON * hmax * gmax;
+    let num = norm3(c0).max(norm3(c1)).max(norm3(c2)).max(norm3(c3)) + margin;
     let kappa_end = |c: [f64; 3], v: [f64; D]| {
         let l = dot(v, v).sqrt();
         let k = norm3(c) / (l * l * l);
