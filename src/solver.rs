@@ -410,6 +410,12 @@ pub(crate) struct Workspace<const D: usize, const B: usize> {
     /// the relative |κ| mismatch).
     check: Vec<[f64; B]>,
     scale: Vec<[f64; 2]>,
+    /// `res`, `check` and `scale` of the trial state of the line search: swapped in with it
+    /// when it is accepted, so a step that lands within the tolerance is known to without
+    /// assembling the Jacobian there.
+    trial_res: Vec<[f64; B]>,
+    trial_check: Vec<[f64; B]>,
+    trial_scale: Vec<[f64; 2]>,
     step: Vec<f64>,
     /// Right-hand side and solution of the condensed system (`B - 1` unknowns per block).
     reduced: Vec<f64>,
@@ -586,6 +592,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         self.res.resize(n, [0.0; B]);
         self.check.resize(n, [0.0; B]);
         self.scale.resize(n, [1.0; 2]);
+        self.trial_res.resize(n, [0.0; B]);
+        self.trial_check.resize(n, [0.0; B]);
+        self.trial_scale.resize(n, [1.0; 2]);
         self.step.resize(n * B, 0.0);
         self.cond.resize(n, Condensed::default());
     }
@@ -620,6 +629,14 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 self.classic_iteration(prob);
             } else {
                 out.newton_steps += 1;
+                out.residual = self.max_residual();
+                if out.residual <= set.tolerance {
+                    // The step's line search measured the new state: converged without
+                    // assembling the Jacobian there (a warm re-solve from here assembles it).
+                    out.converged = true;
+                    self.lin_state = LinState::Stale;
+                    return out;
+                }
                 if !set.newton_chords || n < NEWTON_CHORD_MIN_BLOCKS {
                     continue;
                 }
@@ -810,13 +827,16 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 self.trial.lam[j] = self.state.lam[j] + s * self.step[j * B + D];
                 self.trial.t[j] = (self.state.t[j] + s * self.step[j * B + D + 1]).clamp(0.0, 1.0);
             }
-            let phi_trial = self.trial_merit(prob);
+            let phi_trial = self.trial_merit(prob, tol);
             // Near the solution (residual within QUADRATIC_REGION × tolerance) the merit is at
             // its rounding noise for large curves, and a full Newton step is reliable.
             let near =
                 s == 1.0 && self.max_residual() <= QUADRATIC_REGION * tol && phi_trial.is_finite();
             if near || phi_trial <= (1.0 - 1e-4 * s) * phi {
                 core::mem::swap(&mut self.state, &mut self.trial);
+                core::mem::swap(&mut self.res, &mut self.trial_res);
+                core::mem::swap(&mut self.check, &mut self.trial_check);
+                core::mem::swap(&mut self.scale, &mut self.trial_scale);
                 return true;
             }
             s *= 0.5;
@@ -894,14 +914,22 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     }
 
     /// Merit `½|R|²` of the trial state, with row scales computed at the trial state (which
-    /// globalizes better on the drawings than the scales of the current state).
-    fn trial_merit(&self, prob: &Problem<D>) -> f64 {
+    /// globalizes better on the drawings than the scales of the current state). Fills
+    /// `trial_res`, `trial_check` and `trial_scale` as [`assemble`](Self::assemble) would
+    /// at the trial state.
+    fn trial_merit(&mut self, prob: &Problem<D>, tol: f64) -> f64 {
         let mut phi = 0.0;
         for j in 0..self.n() {
             let loc = Self::local(prob, &self.trial, j);
-            let mut sc = [1.0; 2];
-            let r = Self::block::<false>(prob, j, &loc, &mut sc);
+            let mut scale = [1.0; 2];
+            let mut g2 = 0.0;
+            let mut ignore = |_: usize, _: Var, _: f64| {};
+            let r =
+                Self::eval_block::<false, false>(prob, j, &loc, &mut scale, &mut g2, &mut ignore);
             phi += r.iter().map(|v| 0.5 * v * v).sum::<f64>();
+            self.trial_res[j] = r;
+            self.trial_check[j] = Self::check_row(r, g2, &loc, tol);
+            self.trial_scale[j] = scale;
         }
         if phi.is_nan() {
             f64::INFINITY
@@ -951,8 +979,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     }
 
     /// The scaled residual of block `j`; with `FROZEN`, the row scales in `scale` are used
-    /// instead of computed (and stored there).
-    #[inline]
+    /// instead of computed (and stored there). The solver evaluates residuals with
+    /// [`eval_block`](Self::eval_block) directly; the tests use this.
+    #[cfg(test)]
     fn block<const FROZEN: bool>(
         prob: &Problem<D>,
         j: usize,

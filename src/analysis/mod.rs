@@ -57,6 +57,7 @@
 //! [`ParamCurveCurvature::curvature`]: kurbo::ParamCurveCurvature::curvature
 
 mod bez;
+pub(crate) use bez::STALL_TOL;
 mod comb;
 mod continuity;
 mod quartic;

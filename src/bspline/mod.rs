@@ -399,10 +399,26 @@ fn dot<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
 /// largest `|h_i|` and `|g_j|`): for a segment collinear to within rounding they are that
 /// rounding, and the bound must still hold for the curvature computed from the same
 /// control points.
-fn rounding_margin<const D: usize>(h: &[[f64; D]; 3], g: &[[f64; D]; 2]) -> f64 {
+///
+/// With it, the stall threshold of the analysis: `STALL_TOL` times the largest `|h_i|`.
+/// Where the lower bound of `|r′|` is below it the analysis may find a stall (and report
+/// |κ| = ∞), so the bound must be infinite there too.
+fn rounding_margin<const D: usize>(h: &[[f64; D]; 3], g: &[[f64; D]; 2]) -> Margins {
     let hmax = h.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
     let gmax = g.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
-    16.0 * f64::EPSILON * hmax * gmax
+    Margins {
+        cross: 16.0 * f64::EPSILON * hmax * gmax,
+        stall: crate::analysis::STALL_TOL * hmax,
+    }
+}
+
+/// The rounding allowances of [`bounds_from_derivatives`], from the whole segment.
+#[derive(Clone, Copy)]
+struct Margins {
+    /// Added to the bound of `|r′ × r″|`.
+    cross: f64,
+    /// A lower bound of `|r′|` at or below this gives an infinite bound.
+    stall: f64,
 }
 
 /// [`CurvatureBounds`] of the cubic whose hodograph has Bernstein coefficients `h` and whose
@@ -410,14 +426,14 @@ fn rounding_margin<const D: usize>(h: &[[f64; D]; 3], g: &[[f64; D]; 2]) -> f64 
 ///
 /// With `r′ = Σ B²_i h_i` and `r″ = Σ B¹_j g_j`, the product `r′ × r″` is the cubic Bernstein
 /// polynomial with coefficients `h₀×g₀, (2h₁×g₀ + h₀×g₁)/3, (h₂×g₀ + 2h₁×g₁)/3, h₂×g₁`, so
-/// `|r′ × r″|` is at most the largest of their norms (convex hull property), plus `margin`
-/// for rounding. `|r′|` is at least `min_i h_i · û` for any unit `û` (the hodograph lies in the
+/// `|r′ × r″|` is at most the largest of their norms (convex hull property), plus
+/// `margin.cross` for rounding. `|r′|` is at least `min_i h_i · û` for any unit `û` (the hodograph lies in the
 /// convex hull of the `h_i`); the best of `û ∈ {h₀, h₁, h₂, h₀ + h₂}` normalized is taken. Hence
 /// `|κ| ≤ max_k |c_k| / (min |r′|)³`, tight to first order in the segment's variation.
 fn bounds_from_derivatives<const D: usize>(
     h: [[f64; D]; 3],
     g: [[f64; D]; 2],
-    margin: f64,
+    margin: Margins,
 ) -> CurvatureBounds {
     // |a × b|² = |a|²|b|² − (a·b)² loses accuracy for nearly parallel vectors; the explicit
     // components do not.
@@ -440,7 +456,7 @@ fn bounds_from_derivatives<const D: usize>(
     );
     let c1: [f64; 3] = core::array::from_fn(|k| (2.0 * h1g0[k] + h0g1[k]) / 3.0);
     let c2: [f64; 3] = core::array::from_fn(|k| (h2g0[k] + 2.0 * h1g1[k]) / 3.0);
-    let num = norm3(c0).max(norm3(c1)).max(norm3(c2)).max(norm3(c3)) + margin;
+    let num = norm3(c0).max(norm3(c1)).max(norm3(c2)).max(norm3(c3)) + margin.cross;
     let kappa_end = |c: [f64; 3], v: [f64; D]| {
         let l = dot(v, v).sqrt();
         let k = norm3(c) / (l * l * l);
@@ -463,7 +479,7 @@ fn bounds_from_derivatives<const D: usize>(
             speed = speed.max(low);
         }
     }
-    let upper = if speed > 0.0 {
+    let upper = if speed > margin.stall {
         num / (speed * speed * speed)
     } else {
         f64::INFINITY
