@@ -427,11 +427,8 @@ impl DenseLu {
             self.piv[k] = p;
             if p != k {
                 // Only the active columns, as in `factor_general`.
-                for j in k..N {
-                    let t = m[k][j];
-                    m[k][j] = m[p][j];
-                    m[p][j] = t;
-                }
+                let (top, rest) = m.split_at_mut(p);
+                top[k][k..].swap_with_slice(&mut rest[0][k..]);
             }
             let inv = 1.0 / m[k][k];
             let mut pr = m[k];
