@@ -389,70 +389,6 @@ impl DenseLu {
 
     /// Factor in place. Returns `false` if a pivot is zero or not finite.
     pub(crate) fn factor(&mut self) -> bool {
-        // The orders of the solver's small systems (blocks of 3 in 2D, 4 in 3D) get kernels
-        // whose loops have a length known at compile time.
-        match self.n {
-            3 => self.factor_fixed::<3>(),
-            4 => self.factor_fixed::<4>(),
-            6 => self.factor_fixed::<6>(),
-            8 => self.factor_fixed::<8>(),
-            9 => self.factor_fixed::<9>(),
-            12 => self.factor_fixed::<12>(),
-            15 => self.factor_fixed::<15>(),
-            16 => self.factor_fixed::<16>(),
-            18 => self.factor_fixed::<18>(),
-            20 => self.factor_fixed::<20>(),
-            21 => self.factor_fixed::<21>(),
-            24 => self.factor_fixed::<24>(),
-            _ => self.factor_general(),
-        }
-    }
-
-    /// [`DenseLu::factor`] for order `N`, in a stack copy of the matrix. Every row update
-    /// runs over the whole row, with the pivot row's entries left of the pivot taken as 0:
-    /// that leaves the stored multipliers of earlier columns as they are, and a loop of
-    /// fixed length `N` (vectorized, no bounds checks) is cheaper on these small matrices
-    /// than the shorter loops of varying length, for half again as many multiply-adds.
-    fn factor_fixed<const N: usize>(&mut self) -> bool {
-        debug_assert_eq!(self.n, N);
-        let mut m = [[0.0f64; N]; N];
-        for (row, src) in m.iter_mut().zip(self.a.chunks_exact(N)) {
-            row.copy_from_slice(src);
-        }
-        for k in 0..N {
-            let below = (k + 1..N).map(|i| (i, m[i][k]));
-            let Some(p) = pivot((k, m[k][k]), below) else {
-                return false;
-            };
-            self.piv[k] = p;
-            if p != k {
-                // Only the active columns, as in `factor_general`.
-                let (top, rest) = m.split_at_mut(p);
-                top[k][k..].swap_with_slice(&mut rest[0][k..]);
-            }
-            let inv = 1.0 / m[k][k];
-            let mut pr = m[k];
-            for x in &mut pr[..=k] {
-                *x = 0.0;
-            }
-            for row in &mut m[k + 1..] {
-                let f = row[k] * inv;
-                if f != 0.0 {
-                    for j in 0..N {
-                        row[j] -= f * pr[j];
-                    }
-                }
-                row[k] = f;
-            }
-        }
-        for (row, dst) in m.iter().zip(self.a.chunks_exact_mut(N)) {
-            dst.copy_from_slice(row);
-        }
-        true
-    }
-
-    /// [`DenseLu::factor`] for any order.
-    fn factor_general(&mut self) -> bool {
         let n = self.n;
         for k in 0..n {
             let below = (k + 1..n).map(|i| (i, self.a[i * n + k]));
@@ -486,48 +422,6 @@ impl DenseLu {
 
     /// Solve `A x = b` in place with the factors from [`DenseLu::factor`].
     pub(crate) fn solve(&self, b: &mut [f64]) {
-        match self.n {
-            3 => self.solve_fixed::<3>(b),
-            4 => self.solve_fixed::<4>(b),
-            6 => self.solve_fixed::<6>(b),
-            8 => self.solve_fixed::<8>(b),
-            9 => self.solve_fixed::<9>(b),
-            12 => self.solve_fixed::<12>(b),
-            15 => self.solve_fixed::<15>(b),
-            16 => self.solve_fixed::<16>(b),
-            18 => self.solve_fixed::<18>(b),
-            20 => self.solve_fixed::<20>(b),
-            21 => self.solve_fixed::<21>(b),
-            24 => self.solve_fixed::<24>(b),
-            _ => self.solve_general(b),
-        }
-    }
-
-    /// [`DenseLu::solve`] for order `N`: the same operations in the same order, with loop
-    /// lengths known at compile time.
-    fn solve_fixed<const N: usize>(&self, b: &mut [f64]) {
-        debug_assert_eq!(self.n, N);
-        let a = &self.a[..N * N];
-        let mut x: [f64; N] = b[..N].try_into().unwrap();
-        for k in 0..N {
-            x.swap(k, self.piv[k]);
-            let xk = x[k];
-            for i in k + 1..N {
-                x[i] -= a[i * N + k] * xk;
-            }
-        }
-        for k in (0..N).rev() {
-            let mut s = 0.0;
-            for j in (k + 1..N).rev() {
-                s += a[k * N + j] * x[j];
-            }
-            x[k] = (x[k] - s) * (1.0 / a[k * N + k]);
-        }
-        b[..N].copy_from_slice(&x);
-    }
-
-    /// [`DenseLu::solve`] for any order.
-    fn solve_general(&self, b: &mut [f64]) {
         let n = self.n;
         for k in 0..n {
             b.swap(k, self.piv[k]);
@@ -1021,9 +915,9 @@ mod tests {
     }
 
     #[test]
-    fn dense_kernels_of_every_order_solve() {
-        // The fixed-order kernels and the general one, on matrices that need row swaps
-        // (small diagonal) and with a zero column below the diagonal.
+    fn dense_lu_solves_at_every_order() {
+        // Matrices that need row swaps (small diagonal), with a zero column below the
+        // diagonal.
         let mut seed = 5;
         for n in 1..=26 {
             let mut lu = DenseLu::default();
