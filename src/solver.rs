@@ -1165,11 +1165,12 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             a.resize(n, 0.0);
         }
         self.tri_d.resize(n, [0.0; D]);
+        let mut ends = None;
         for j in 0..n {
             let l = Self::local(prob, &self.state, j);
             let [q0, _, q2] = self.state.segment(prob, j);
             let basis = prob.basis[j];
-            let t = peak_parameter(basis, q0, q2, prob.p[j], l.t);
+            let t = peak_parameter(basis, &mut ends, q0, q2, prob.p[j], l.t);
             self.state.t[j] = t;
             let w = basis.weights(t);
             let (w0, w2) = (w[0][0], w[0][1]);
@@ -1397,6 +1398,28 @@ impl Var {
     }
 }
 
+/// The basis weights and stationarity coefficients at `t = 0` and `t = 1`, which decide
+/// whether a segment's peak is forced to an end: constants of the basis, computed once per
+/// basis and shared by every block that has it (`peak_parameter` keeps those of the last
+/// basis it saw).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct EndTerms {
+    basis: Basis,
+    w: [[[f64; 2]; 5]; 2],
+    st: [Stationarity; 2],
+}
+
+impl EndTerms {
+    fn of(basis: Basis) -> EndTerms {
+        let w = [basis.weights(0.0), basis.weights(1.0)];
+        EndTerms {
+            basis,
+            w,
+            st: [Stationarity::new(&w[0]), Stationarity::new(&w[1])],
+        }
+    }
+}
+
 /// The parameter `t` at which the segment from `q0` to `q2` whose middle control point makes
 /// it pass through `p` at `t` has its curvature peak (seed 000 §3.1; for the quadratic this
 /// is the cubic of seed 004 eq. 4). The peak condition, with `c_1` eliminated and multiplied
@@ -1405,6 +1428,7 @@ impl Var {
 /// Newton's method safeguarded by bisection.
 pub(crate) fn peak_parameter<const D: usize>(
     basis: Basis,
+    ends: &mut Option<EndTerms>,
     q0: [f64; D],
     q2: [f64; D],
     p: [f64; D],
@@ -1460,9 +1484,7 @@ pub(crate) fn peak_parameter<const D: usize>(
     }
     let pa = sub(p, q0);
     let pb = sub(q2, p);
-    let f = |t: f64| -> (f64, f64) {
-        let w = basis.weights(t);
-        let st = Stationarity::new(&w);
+    let at = |w: &[[f64; 2]; 5], st: &Stationarity| -> (f64, f64) {
         let r: [f64; D] = core::array::from_fn(|k| pa[k] - w[0][1] * d[k]);
         let s: [f64; D] = core::array::from_fn(|k| pb[k] - w[0][0] * d[k]);
         let dr: [f64; D] = core::array::from_fn(|k| -w[1][1] * d[k]);
@@ -1478,8 +1500,16 @@ pub(crate) fn peak_parameter<const D: usize>(
             + st.c[2] * dss;
         (v, dv)
     };
+    let f = |t: f64| -> (f64, f64) {
+        let w = basis.weights(t);
+        at(&w, &Stationarity::new(&w))
+    };
     let (mut lo, mut hi) = (0.0, 1.0);
-    let (flo, fhi) = (f(0.0).0, f(1.0).0);
+    let ends = match *ends {
+        Some(e) if e.basis == basis => e,
+        _ => *ends.insert(EndTerms::of(basis)),
+    };
+    let (flo, fhi) = (at(&ends.w[0], &ends.st[0]).0, at(&ends.w[1], &ends.st[1]).0);
     if !(flo > 0.0) {
         return 0.0;
     }
@@ -1532,7 +1562,7 @@ mod tests {
         for _ in 0..20_000 {
             let (q0, q2, p) = ([r(), r()], [r(), r()], [r(), r()]);
             let guess = 0.5 + 0.5 * r();
-            let t = peak_parameter(Basis::QUADRATIC, q0, q2, p, guess);
+            let t = peak_parameter(Basis::QUADRATIC, &mut None, q0, q2, p, guess);
             assert!((0.0..=1.0).contains(&t));
             let (d, e) = (sub(q2, q0), sub(q0, p));
             let f: [f64; 2] = core::array::from_fn(|k| 3.0 * q0[k] - 2.0 * p[k] - q2[k]);
@@ -1551,7 +1581,7 @@ mod tests {
     fn peak_parameter_quadratic_is_vertex() {
         // For the quadratic the peak t is where the parabola's vertex lies.
         let (q0, q2, p) = ([0.0, 0.0], [4.0, 0.0], [1.0, 1.5]);
-        let t = peak_parameter(Basis::QUADRATIC, q0, q2, p, 0.5);
+        let t = peak_parameter(Basis::QUADRATIC, &mut None, q0, q2, p, 0.5);
         let w = Basis::QUADRATIC.weights(t);
         let c1: [f64; 2] = core::array::from_fn(|k| {
             (p[k] - w[0][0] * q0[k] - w[0][1] * q2[k]) / (1.0 - w[0][0] - w[0][1])
