@@ -672,6 +672,14 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             }
         };
         for classic in CLASSIC_STARTS {
+            // One segment between fixed ends (an open curve through three points): its
+            // control point and λ are fixed by the ends, and one classic iteration solves
+            // for `t` and the control point directly; more repeat it.
+            let classic = if !prob.closed && prob.p.len() == 1 {
+                classic.min(1)
+            } else {
+                classic
+            };
             let budget = Settings {
                 max_iterations: ATTEMPT_BUDGET.min(set.max_iterations.saturating_sub(total)),
                 ..*set
