@@ -413,8 +413,8 @@ pub(crate) struct Workspace<const D: usize, const B: usize> {
     check: Vec<[f64; B]>,
     scale: Vec<[f64; 2]>,
     /// `res`, `check` and `scale` of the trial state of the line search: swapped in with it
-    /// when it is accepted, so a step that lands within the tolerance is known to without
-    /// assembling the Jacobian there.
+    /// when it is accepted, so that a step landing within the tolerance is recognized
+    /// without assembling the Jacobian there.
     trial_res: Vec<[f64; B]>,
     trial_check: Vec<[f64; B]>,
     trial_scale: Vec<[f64; 2]>,

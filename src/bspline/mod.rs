@@ -395,14 +395,13 @@ fn dot<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
     (0..D).map(|k| a[k] * b[k]).sum::<f64>()
 }
 
-/// The rounding of the cross products `h × g` (a few ε `|h| |g|` each, with the segment's
-/// largest `|h_i|` and `|g_j|`): for a segment collinear to within rounding they are that
-/// rounding, and the bound must still hold for the curvature computed from the same
-/// control points.
-///
-/// With it, the stall threshold of the analysis: `STALL_TOL` times the largest `|h_i|`.
-/// Where the lower bound of `|r′|` is below it the analysis may find a stall (and report
-/// |κ| = ∞), so the bound must be infinite there too.
+/// The allowances of a segment's bounds, from its largest `|h_i|` and `|g_j|`:
+/// - the rounding of the cross products `h × g` (a few ε `|h| |g|` each): for a segment
+///   collinear to within rounding they are that rounding, and the bound must still hold for
+///   the curvature computed from the same control points;
+/// - the stall threshold of the analysis, `STALL_TOL` times the largest `|h_i|`: where the
+///   lower bound of `|r′|` is below it the analysis may find a stall (and report |κ| = ∞),
+///   so the bound must be infinite there too.
 fn rounding_margin<const D: usize>(h: &[[f64; D]; 3], g: &[[f64; D]; 2]) -> Margins {
     let hmax = h.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
     let gmax = g.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
@@ -427,9 +426,10 @@ struct Margins {
 /// With `r′ = Σ B²_i h_i` and `r″ = Σ B¹_j g_j`, the product `r′ × r″` is the cubic Bernstein
 /// polynomial with coefficients `h₀×g₀, (2h₁×g₀ + h₀×g₁)/3, (h₂×g₀ + 2h₁×g₁)/3, h₂×g₁`, so
 /// `|r′ × r″|` is at most the largest of their norms (convex hull property), plus
-/// `margin.cross` for rounding. `|r′|` is at least `min_i h_i · û` for any unit `û` (the hodograph lies in the
-/// convex hull of the `h_i`); the best of `û ∈ {h₀, h₁, h₂, h₀ + h₂}` normalized is taken. Hence
-/// `|κ| ≤ max_k |c_k| / (min |r′|)³`, tight to first order in the segment's variation.
+/// `margin.cross` for rounding. `|r′|` is at least `min_i h_i · û` for any unit `û` (the
+/// hodograph lies in the convex hull of the `h_i`); the best of `û ∈ {h₀, h₁, h₂, h₀ + h₂}`
+/// normalized is taken. Hence `|κ| ≤ max_k |c_k| / (min |r′|)³`, tight to first order in the
+/// segment's variation; infinite where `min |r′|` is within `margin.stall`.
 fn bounds_from_derivatives<const D: usize>(
     h: [[f64; D]; 3],
     g: [[f64; D]; 2],

@@ -458,6 +458,20 @@ pub fn check_spline2d(
     }
 }
 
+/// `sin` of the angle between the legs of the control triangle of a 3D segment at an end
+/// (its last three control points at `t = 1` when `at_end`, else its first three).
+fn end_thinness(s: &kappa::analysis::SpaceBez, at_end: bool) -> f64 {
+    let p = s.control_points();
+    let n = p.len();
+    let (q0, q1, q2) = if at_end {
+        (p[n - 3], p[n - 2], p[n - 1])
+    } else {
+        (p[0], p[1], p[2])
+    };
+    let (r, v) = (q1 - q0, q2 - q1);
+    (r.cross(v).length() / (r.length() * v.length())).max(f64::MIN_POSITIVE)
+}
+
 /// The shorter handle of a segment's control triangle.
 fn handle(s: &Segment<Point>) -> f64 {
     s.q[0].distance(s.q[1]).min(s.q[1].distance(s.q[2]))
@@ -922,8 +936,15 @@ pub fn check_space(
                 CurvatureAnalysis::curvature(a, 1.0),
                 CurvatureAnalysis::curvature(b, 0.0),
             );
-            let g2_floor =
-                (1e3 * f64::EPSILON * mag / (ka.max(kb) * hmin * hmin)).max(4.0 * angle_floor);
+            // As for 2D joints (`check_solution`): control points off by δ change |κ| at a
+            // joint by about δ/(h·thin) relative, `thin` the sine of the angle between the
+            // legs of a control triangle there. On nearly collinear data that dominates
+            // (the solver's convergence test allows the same floor, `ROUNDING_FLOOR` over
+            // the thinness of the triangles of middle control points).
+            let thin = end_thinness(a, true).min(end_thinness(b, false));
+            let g2_floor = (1e3 * f64::EPSILON * mag / (ka.max(kb) * hmin * hmin))
+                .max(4.0 * angle_floor)
+                .max(1e3 * f64::EPSILON * mag / (hmin * thin));
             assert!(
                 !((ka - kb).abs() > 1e-8f64.max(g2_floor) * ka.max(kb)),
                 "{what}: |κ| differs at the kept joint {j:?}"
