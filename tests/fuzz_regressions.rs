@@ -932,6 +932,32 @@ mod fixspace_hermite {
     }
 }
 
+/// A B-spline's reported maximum holds: |κ| at every reported parameter equals it (to 1e-9),
+/// and no sample of |κ| on the parameters `k/64` up to `end` exceeds it.
+fn assert_bspline_maximum(
+    max_value: f64,
+    params: &[f64],
+    curvature: impl Fn(f64) -> f64,
+    end: f64,
+) {
+    assert!(!params.is_empty());
+    for &t in params {
+        let k = curvature(t).abs();
+        assert!(
+            (k - max_value).abs() <= 1e-9 * max_value,
+            "{t}: {k} vs {max_value}"
+        );
+    }
+    for i in 0..=(end * 64.0) as usize {
+        let t = i as f64 / 64.0;
+        let k = curvature(t).abs();
+        assert!(
+            k <= max_value * (1.0 + 1e-9),
+            "|κ({t})| = {k} above {max_value}"
+        );
+    }
+}
+
 /// `bspline`, found by the ten-minute run on the merged code: nearly collinear closed data
 /// with a point repeated two places apart to within 1e-11 of the size (a near-cusp at the
 /// joint t = 1, next to segments that are straight to within rounding). The maximum at the
@@ -951,22 +977,7 @@ mod bspline_near_cusp_next_to_straight {
         ];
         let b = BSpline::new(&pts, true).unwrap();
         let max = b.max_curvature();
-        assert!(!max.params.is_empty());
-        for &t in &max.params {
-            let k = b.curvature(t).abs();
-            assert!(
-                (k - max.value).abs() <= 1e-9 * max.value,
-                "{t}: {k} vs {max:?}"
-            );
-        }
-        for i in 0..=256 {
-            let t = i as f64 / 64.0;
-            let k = b.curvature(t).abs();
-            assert!(
-                k <= max.value * (1.0 + 1e-9),
-                "|κ({t})| = {k} above {max:?}"
-            );
-        }
+        super::assert_bspline_maximum(max.value, &max.params, |t| b.curvature(t), 4.0);
     }
 }
 
@@ -980,26 +991,6 @@ mod bspline_near_cusp_next_to_straight {
 mod bspline_piece_bounds_from_derivatives {
     use kappa::{BSpline, Point3};
     use kurbo::Point;
-
-    fn check(max_value: f64, params: &[f64], curvature: impl Fn(f64) -> f64, end: f64) {
-        assert!(!params.is_empty());
-        for &t in params {
-            let k = curvature(t).abs();
-            assert!(
-                (k - max_value).abs() <= 1e-9 * max_value,
-                "{t}: {k} vs {max_value}"
-            );
-        }
-        let mut t = 0.0;
-        while t <= end {
-            let k = curvature(t).abs();
-            assert!(
-                k <= max_value * (1.0 + 1e-9),
-                "|κ({t})| = {k} above {max_value}"
-            );
-            t += 1.0 / 64.0;
-        }
-    }
 
     #[test]
     fn nearly_collinear_open_2d() {
@@ -1029,7 +1020,7 @@ mod bspline_piece_bounds_from_derivatives {
         let max = b.max_curvature();
         // The joint t = 10 holds the maximum (exact |κ| of the control points: 1.35960e-5).
         assert!(max.value > 1.3e-5, "{max:?}");
-        check(
+        super::assert_bspline_maximum(
             max.value,
             &max.params,
             |t| b.curvature(t),
@@ -1114,7 +1105,7 @@ mod bspline_piece_bounds_from_derivatives {
         let pts: Vec<Point3> = raw.iter().map(|&(x, y, z)| Point3::new(x, y, z)).collect();
         let b = BSpline::new(&pts, false).unwrap();
         let max = b.max_curvature();
-        check(
+        super::assert_bspline_maximum(
             max.value,
             &max.params,
             |t| b.curvature(t),

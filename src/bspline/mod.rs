@@ -340,7 +340,7 @@ const BOUND_PIECES: usize = 8;
 /// `1/pieces²` of `r″` are left out: |κ| does not see them.
 fn curvature_bounds_split<const D: usize>(p: [[f64; D]; 4], pieces: usize) -> CurvatureBounds {
     let (h, g) = derivative_coefficients(p);
-    let margin = rounding_margin(&h, &g);
+    let margin = margins(&h, &g);
     if pieces <= 1 {
         return bounds_from_derivatives(h, g, margin);
     }
@@ -402,7 +402,7 @@ fn dot<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
 /// - the stall threshold of the analysis, `STALL_TOL` times the largest `|h_i|`: where the
 ///   lower bound of `|r′|` is below it the analysis may find a stall (and report |κ| = ∞),
 ///   so the bound must be infinite there too.
-fn rounding_margin<const D: usize>(h: &[[f64; D]; 3], g: &[[f64; D]; 2]) -> Margins {
+fn margins<const D: usize>(h: &[[f64; D]; 3], g: &[[f64; D]; 2]) -> Margins {
     let hmax = h.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
     let gmax = g.iter().map(|&v| dot(v, v)).fold(0.0, f64::max).sqrt();
     Margins {
