@@ -59,13 +59,17 @@ fn check_spline(spline: &Spline, points: &[Point], closed: bool, size: f64, what
             "{what} seg {j}: interpolation error {err}"
         );
         // The analysis module, run independently on the segment, finds its maximum |κ| at
-        // t_max (|Δt| ≤ 1e-6), unless the peak is forced to a segment end.
+        // t_max (|Δt| ≤ 1e-6), unless the peak is forced to a segment end. Where the values
+        // are compared, `floor` allows for the rounding of the control points: if two
+        // roundings of one curve differ by at most δ in |κ| everywhere, the peak of one is
+        // within 2δ of |κ| of the other at its own peak.
         let max = kappa::analysis::CurvatureAnalysis::max_curvature(ps);
         let at_end = seg.t_max <= 1e-9 || seg.t_max >= 1.0 - 1e-9;
         let found = max.params.iter().any(|&t| (t - seg.t_max).abs() <= 1e-6);
         let k_here = curvature(ps, seg.t_max).abs();
+        let floor = 2.0 * curvature_rounding(ps, seg.t_max);
         assert!(
-            found || at_end || (k_here - max.value).abs() <= 1e-9 * max.value,
+            found || at_end || (k_here - max.value).abs() <= 1e-9 * max.value + floor,
             "{what} seg {j}: analysis finds max |κ| {} at {:?}, t_max = {} (|κ| {k_here})",
             max.value,
             max.params,
@@ -75,14 +79,14 @@ fn check_spline(spline: &Spline, points: &[Point], closed: bool, size: f64, what
         let (ts, ks) = sampled_peak(ps);
         let k_at = curvature(ps, seg.t_max).abs();
         assert!(
-            k_at >= ks * (1.0 - 1e-9),
+            k_at >= ks * (1.0 - 1e-9) - floor,
             "{what} seg {j}: |κ(t_max={})| = {k_at} below the sampled peak {ks} at {ts}",
             seg.t_max
         );
         if seg.t_max > 1e-6 && seg.t_max < 1.0 - 1e-6 && (ts - seg.t_max).abs() > 1e-6 {
             // A flat peak: the values must agree to rounding.
             assert!(
-                (k_at - ks).abs() <= 1e-9 * ks,
+                (k_at - ks).abs() <= 1e-9 * ks + floor,
                 "{what} seg {j}: peak at {ts}, t_max {}",
                 seg.t_max
             );

@@ -43,6 +43,38 @@ pub fn curvature(seg: &PathSeg, t: f64) -> f64 {
     d1.cross(d2) / d1.hypot().powi(3)
 }
 
+/// A first-order bound on how far κ = (r′ × r″)/|r′|³ moves when `r′` moves by at most `e1`
+/// and `r″` by at most `e2`: `(e1|r″| + e2|r′|)/|r′|³ + 3|κ|e1/|r′|`.
+pub fn kappa_perturbation(d1: kurbo::Vec2, d2: kurbo::Vec2, e1: f64, e2: f64) -> f64 {
+    let s1 = d1.hypot();
+    let k = d1.cross(d2) / s1.powi(3);
+    (e1 * d2.hypot() + e2 * s1) / s1.powi(3) + 3.0 * k.abs() * e1 / s1
+}
+
+/// A few units in the last place of the largest coordinate of `points`: how far two
+/// roundings of one control point (the solver's and a curve form's) can differ.
+pub fn coordinate_rounding(points: &[Point]) -> f64 {
+    let coord = points
+        .iter()
+        .fold(0.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    4.0 * f64::EPSILON * coord
+}
+
+/// A bound on how far |κ(t)| of `seg` moves when each control point moves by
+/// [`coordinate_rounding`]: for a cubic `|δr′| ≤ 6e` and `|δr″| ≤ 24e` (less for lower
+/// degrees). It matters only for segments far smaller than their distance from the origin
+/// (a collapsed segment of εκ).
+pub fn curvature_rounding(seg: &PathSeg, t: f64) -> f64 {
+    let pts: Vec<Point> = match seg {
+        PathSeg::Line(l) => vec![l.p0, l.p1],
+        PathSeg::Quad(q) => vec![q.p0, q.p1, q.p2],
+        PathSeg::Cubic(c) => vec![c.p0, c.p1, c.p2, c.p3],
+    };
+    let e = coordinate_rounding(&pts);
+    let (d1, d2) = derivs(seg, t);
+    kappa_perturbation(d1, d2, 6.0 * e, 24.0 * e)
+}
+
 /// Unit tangent.
 pub fn tangent(seg: &PathSeg, t: f64) -> kurbo::Vec2 {
     let (d1, _) = derivs(seg, t);
