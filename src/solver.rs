@@ -81,6 +81,10 @@ const PEAK_T_TOLERANCE: f64 = 1e-10;
 const QUADRATIC_PEAK_TOLERANCE: f64 = 1e-14;
 /// Iteration cap of the 1-D root solve for `t` in the classic loop.
 const ROOT_ITERATIONS: usize = 60;
+/// A Newton step that lands `t` within this of an end of `[0, 1]` is taken in full, `t`
+/// clamped to the end: a peak forced to a segment end is reached in one step, not approached
+/// at the rate of the step-to-bound factor.
+const T_LANDING: f64 = 1e-9;
 
 #[inline]
 fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
@@ -822,9 +826,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             }
             let dt = self.step[j * B + D + 1];
             let t = st.t[j];
-            if dt < 0.0 {
+            if dt < 0.0 && t + dt < -T_LANDING {
                 smax = smax.min(0.999 * t / -dt + 1e-300);
-            } else if dt > 0.0 {
+            } else if dt > 0.0 && t + dt > 1.0 + T_LANDING {
                 smax = smax.min(0.999 * (1.0 - t) / dt + 1e-300);
             }
         }
