@@ -470,7 +470,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let n = self.n();
         if self.lin_state == LinState::Stale && prob.p.len() == n && self.res.len() == n {
             self.lin.reset(prob.closed, n, B - 1);
-            self.assemble(prob, true, tol);
+            self.assemble(prob, tol);
             self.fact_scale.clone_from(&self.scale);
             self.lin_state = LinState::Assembled;
         }
@@ -577,18 +577,38 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// The residual (and convergence measures) of the current state with the row scales of
     /// the stored factorization; returns the merit.
     fn residual_frozen(&mut self, prob: &Problem<D>, tol: f64) -> f64 {
-        let n = self.n();
+        Self::residuals::<true>(
+            prob,
+            &self.state,
+            &mut self.fact_scale,
+            &mut self.res,
+            &mut self.check,
+            tol,
+        )
+    }
+
+    /// The scaled residual `res`, the convergence measures `check` and the merit `½|R|²` of
+    /// state `st`, block by block. With `FROZEN` the row scales are read from `scale`
+    /// (and left as they are); otherwise they are computed and stored there.
+    fn residuals<const FROZEN: bool>(
+        prob: &Problem<D>,
+        st: &State<D>,
+        scale: &mut [[f64; 2]],
+        res: &mut [[f64; B]],
+        check: &mut [[f64; B]],
+        tol: f64,
+    ) -> f64 {
+        debug_assert!(scale.len() == st.t.len() && res.len() == st.t.len());
+        debug_assert_eq!(check.len(), st.t.len());
         let mut phi = 0.0;
-        for j in 0..n {
-            let loc = Self::local(prob, &self.state, j);
-            let mut scale = self.fact_scale[j];
+        for (j, ((scale, res), check)) in scale.iter_mut().zip(res).zip(check).enumerate() {
+            let loc = Self::local(prob, st, j);
             let mut g2 = 0.0;
             let mut ignore = |_: usize, _: Var, _: f64| {};
-            let r =
-                Self::eval_block::<false, true>(prob, j, &loc, &mut scale, &mut g2, &mut ignore);
+            let r = Self::eval_block::<false, FROZEN>(prob, j, &loc, scale, &mut g2, &mut ignore);
             phi += r.iter().map(|v| 0.5 * v * v).sum::<f64>();
-            self.res[j] = r;
-            self.check[j] = Self::check_row(r, g2, &loc, tol);
+            *res = r;
+            *check = Self::check_row(r, g2, &loc, tol);
         }
         phi
     }
@@ -619,7 +639,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         loop {
             self.lin.reset(prob.closed, n, B - 1);
-            let phi = self.assemble(prob, true, set.tolerance);
+            let phi = self.assemble(prob, set.tolerance);
             self.lin_state = LinState::Assembled;
             self.fact_scale.clone_from(&self.scale);
             out.residual = self.max_residual();
@@ -932,19 +952,14 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// `trial_res`, `trial_check` and `trial_scale` as [`assemble`](Self::assemble) would
     /// at the trial state.
     fn trial_merit(&mut self, prob: &Problem<D>, tol: f64) -> f64 {
-        let mut phi = 0.0;
-        for j in 0..self.n() {
-            let loc = Self::local(prob, &self.trial, j);
-            let mut scale = [1.0; 2];
-            let mut g2 = 0.0;
-            let mut ignore = |_: usize, _: Var, _: f64| {};
-            let r =
-                Self::eval_block::<false, false>(prob, j, &loc, &mut scale, &mut g2, &mut ignore);
-            phi += r.iter().map(|v| 0.5 * v * v).sum::<f64>();
-            self.trial_res[j] = r;
-            self.trial_check[j] = Self::check_row(r, g2, &loc, tol);
-            self.trial_scale[j] = scale;
-        }
+        let phi = Self::residuals::<false>(
+            prob,
+            &self.trial,
+            &mut self.trial_scale,
+            &mut self.trial_res,
+            &mut self.trial_check,
+            tol,
+        );
         if phi.is_nan() {
             f64::INFINITY
         } else {
@@ -952,35 +967,28 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
     }
 
-    /// Evaluate the scaled residual of the current state (and, with `jac`, the scaled
-    /// Jacobian into the linear system). Returns the merit `½|R|²`.
-    fn assemble(&mut self, prob: &Problem<D>, jac: bool, tol: f64) -> f64 {
+    /// Evaluate the scaled residual and the scaled Jacobian (into the linear system) of the
+    /// current state. Returns the merit `½|R|²`.
+    fn assemble(&mut self, prob: &Problem<D>, tol: f64) -> f64 {
         let n = self.n();
         let mut phi = 0.0;
         for j in 0..n {
             let loc = Self::local(prob, &self.state, j);
             let mut scale = [1.0; 2];
             let mut g2 = 0.0;
-            let r = if jac {
-                let mut jl = [[[0.0; B]; 4]; B];
-                let mut sink = |row: usize, col: Var, v: f64| {
-                    let (o, k) = match col {
-                        Var::C(off, k) => ((off + 1) as usize, k),
-                        Var::L(off) => ((off + 1) as usize, D),
-                        Var::T => (1, D + 1),
-                    };
-                    jl[row][o][k] += v;
+            let mut jl = [[[0.0; B]; 4]; B];
+            let mut sink = |row: usize, col: Var, v: f64| {
+                let (o, k) = match col {
+                    Var::C(off, k) => ((off + 1) as usize, k),
+                    Var::L(off) => ((off + 1) as usize, D),
+                    Var::T => (1, D + 1),
                 };
-                let r =
-                    Self::eval_block::<true, false>(prob, j, &loc, &mut scale, &mut g2, &mut sink);
-                let columns = Columns::new::<D, B>(prob.closed, n, j, B - 1);
-                self.cond[j] = condense::<D, B>(&mut jl, &columns);
-                self.lin.add_block::<B>(j * (B - 1), D + 1, &jl, &columns);
-                r
-            } else {
-                let mut ignore = |_: usize, _: Var, _: f64| {};
-                Self::eval_block::<false, false>(prob, j, &loc, &mut scale, &mut g2, &mut ignore)
+                jl[row][o][k] += v;
             };
+            let r = Self::eval_block::<true, false>(prob, j, &loc, &mut scale, &mut g2, &mut sink);
+            let columns = Columns::new::<D, B>(prob.closed, n, j, B - 1);
+            self.cond[j] = condense::<D, B>(&mut jl, &columns);
+            self.lin.add_block::<B>(j * (B - 1), D + 1, &jl, &columns);
             self.scale[j] = scale;
             self.check[j] = Self::check_row(r, g2, &loc, tol);
             let rs = r;
@@ -1461,38 +1469,15 @@ pub(crate) fn peak_parameter<const D: usize>(
         if !(c3 + c2 + c1 + c0 > 0.0) {
             return 1.0;
         }
-        let (mut lo, mut hi) = (0.0f64, 1.0f64);
-        let mut t = if guess > 0.0 && guess < 1.0 {
-            guess
-        } else {
-            0.5
-        };
-        for _ in 0..ROOT_ITERATIONS {
+        // To rounding: Newton converges quadratically here, so this costs about one step
+        // more than the classic loop's tolerance, and the start does not depend on it.
+        // (`-g` decreases through the root.)
+        let neg_g = |t: f64| {
             let v = ((c3 * t + c2) * t + c1) * t + c0;
-            if v < 0.0 {
-                lo = t;
-            } else if v > 0.0 {
-                hi = t;
-            } else {
-                return t;
-            }
             let dv = (3.0 * c3 * t + 2.0 * c2) * t + c1;
-            let step = v / dv;
-            let newton = t - step;
-            t = if newton > lo && newton < hi {
-                newton
-            } else {
-                0.5 * (lo + hi)
-            };
-            // To rounding: Newton converges quadratically here, so this costs about one step
-            // more than the classic loop's tolerance, and the start does not depend on it.
-            if hi - lo < QUADRATIC_PEAK_TOLERANCE
-                || (t == newton && step.abs() < QUADRATIC_PEAK_TOLERANCE)
-            {
-                break;
-            }
-        }
-        return t;
+            (-v, -dv)
+        };
+        return bracketed_newton(neg_g, guess, QUADRATIC_PEAK_TOLERANCE);
     }
     let pa = sub(p, q0);
     let pb = sub(q2, p);
@@ -1516,7 +1501,6 @@ pub(crate) fn peak_parameter<const D: usize>(
         let w = basis.weights(t);
         at(&w, &Stationarity::new(&w))
     };
-    let (mut lo, mut hi) = (0.0, 1.0);
     let ends = match *ends {
         Some(e) if e.basis == basis => e,
         _ => *ends.insert(EndTerms::of(basis)),
@@ -1528,6 +1512,15 @@ pub(crate) fn peak_parameter<const D: usize>(
     if !(fhi < 0.0) {
         return 1.0;
     }
+    bracketed_newton(f, guess, PEAK_T_TOLERANCE)
+}
+
+/// The root in `[0, 1]` of `f` (value, derivative), which decreases through it with
+/// `f(0) > 0 > f(1)`: Newton's method from `guess` (or the middle), a bisection of the
+/// bracket wherever Newton would leave it, until the bracket or the Newton correction is
+/// below `tol` (at most [`ROOT_ITERATIONS`] steps; an exact or NaN value stops at once).
+fn bracketed_newton(f: impl Fn(f64) -> (f64, f64), guess: f64, tol: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
     let mut t = if guess > 0.0 && guess < 1.0 {
         guess
     } else {
@@ -1542,13 +1535,15 @@ pub(crate) fn peak_parameter<const D: usize>(
         } else {
             return t;
         }
-        let newton = t - v / dv;
-        t = if newton > lo && newton < hi && newton.is_finite() {
+        let step = v / dv;
+        let newton = t - step;
+        // Inside the open bracket also means finite.
+        t = if newton > lo && newton < hi {
             newton
         } else {
             0.5 * (lo + hi)
         };
-        if hi - lo < PEAK_T_TOLERANCE || (t == newton && (v / dv).abs() < PEAK_T_TOLERANCE) {
+        if hi - lo < tol || (t == newton && step.abs() < tol) {
             break;
         }
     }
@@ -1799,7 +1794,7 @@ mod linear_tests {
         ws.classic_iteration(&prob);
         ws.size_buffers(n);
         ws.lin.reset(closed, n, B - 1);
-        ws.assemble(&prob, true, 1e-12);
+        ws.assemble(&prob, 1e-12);
         // The full Newton system, dense.
         let nn = n * B;
         let mut dense = DenseLu::default();
