@@ -19,12 +19,17 @@ pub(crate) trait SegmentBasis: Copy {
     /// The coefficient `k` of the end curvature `κ(1) = k Δ(Q0, Q1, Q2) / |Q2 - Q1|³`
     /// (and, by symmetry, `κ(0) = k Δ / |Q1 - Q0|³`).
     fn end_coefficient(&self) -> f64 {
-        // κ(1) = |h(1)| 2Δ / (B(1)³ |s|³), and A(1) = 0 so h(1) = -A'(1) B(1).
-        let w1 = self.weights(1.0);
-        let a1 = w1[2][0]; // A'(1) = -w0''(1)
-        let b1 = w1[1][1]; // B(1) = w2'(1)
-        2.0 * a1.abs() / (b1 * b1)
+        end_coefficient_from_weights(self)
     }
+}
+
+/// [`SegmentBasis::end_coefficient`] from the weights at `t = 1`.
+fn end_coefficient_from_weights(basis: &impl SegmentBasis) -> f64 {
+    // κ(1) = |h(1)| 2Δ / (B(1)³ |s|³), and A(1) = 0 so h(1) = -A'(1) B(1).
+    let w1 = basis.weights(1.0);
+    let a1 = w1[2][0]; // A'(1) = -w0''(1)
+    let b1 = w1[1][1]; // B(1) = w2'(1)
+    2.0 * a1.abs() / (b1 * b1)
 }
 
 /// The constrained cubic of εκ-curves (seed 000 eq. 1):
@@ -37,6 +42,8 @@ pub(crate) struct CubicEk {
     b: f64,
     /// The shape parameter as given (kept so that it round-trips exactly).
     a: f64,
+    /// The end coefficient, from the weights (the solver reads it for every joint).
+    k: f64,
 }
 
 impl CubicEk {
@@ -44,6 +51,8 @@ impl CubicEk {
     pub(crate) const QUADRATIC: CubicEk = CubicEk {
         b: 0.0,
         a: 2.0 / 3.0,
+        // 2 |w0''(1)| / w2'(1)² = 2 · 2 / 2², exactly.
+        k: 1.0,
     };
 
     /// The segment with shape parameter `a` (`a = 2/3` maps exactly to [`CubicEk::QUADRATIC`]).
@@ -51,10 +60,13 @@ impl CubicEk {
         if a == 2.0 / 3.0 {
             CubicEk::QUADRATIC
         } else {
-            CubicEk {
+            let mut c = CubicEk {
                 b: 2.0 - 3.0 * a,
                 a,
-            }
+                k: 0.0,
+            };
+            c.k = end_coefficient_from_weights(&c);
+            c
         }
     }
 
@@ -91,6 +103,11 @@ impl SegmentBasis for CubicEk {
             [f[3], -g[3]],
             [f[4], g[4]],
         ]
+    }
+
+    #[inline]
+    fn end_coefficient(&self) -> f64 {
+        self.k
     }
 }
 
@@ -336,6 +353,11 @@ mod tests {
     #[test]
     fn quadratic_end_coefficient_is_one_and_cubic_matches_paper() {
         assert_near(CubicEk::QUADRATIC.end_coefficient(), 1.0, 1e-15);
+        // The stored coefficient is exactly the one the weights give.
+        for a in [2.0 / 3.0, 0.7, 0.8, 0.95, 0.999] {
+            let b = CubicEk::new(a);
+            assert_eq!(b.end_coefficient(), end_coefficient_from_weights(&b));
+        }
         // seed 000 eq. 8: κ(1) = (4/3)(1-a)Δ / (a²|Q2-Q1|³)
         for &a in &[0.7, 0.8, 0.95] {
             let k = CubicEk::new(a).end_coefficient();

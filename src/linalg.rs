@@ -389,6 +389,55 @@ impl DenseLu {
 
     /// Factor in place. Returns `false` if a pivot is zero or not finite.
     pub(crate) fn factor(&mut self) -> bool {
+        // The orders of the small κ/εκ systems (blocks of 3 unknowns in 2D, 4 in 3D) get
+        // kernels with the order known at compile time; the arithmetic is the same.
+        match self.n {
+            3 => self.factor_fixed::<3>(),
+            4 => self.factor_fixed::<4>(),
+            6 => self.factor_fixed::<6>(),
+            8 => self.factor_fixed::<8>(),
+            9 => self.factor_fixed::<9>(),
+            12 => self.factor_fixed::<12>(),
+            15 => self.factor_fixed::<15>(),
+            16 => self.factor_fixed::<16>(),
+            _ => self.factor_general(),
+        }
+    }
+
+    /// [`DenseLu::factor`] with the order `N` known at compile time.
+    fn factor_fixed<const N: usize>(&mut self) -> bool {
+        debug_assert_eq!(self.n, N);
+        let a = &mut self.a[..N * N];
+        for k in 0..N {
+            let below = (k + 1..N).map(|i| (i, a[i * N + k]));
+            let Some(p) = pivot((k, a[k * N + k]), below) else {
+                return false;
+            };
+            self.piv[k] = p;
+            if p != k {
+                for j in k..N {
+                    a.swap(k * N + j, p * N + j);
+                }
+            }
+            let inv = 1.0 / a[k * N + k];
+            let (top, below) = a.split_at_mut((k + 1) * N);
+            let pivot_row: &[f64; N] = top[k * N..].try_into().unwrap();
+            for row in below.chunks_exact_mut(N) {
+                let row: &mut [f64; N] = row.try_into().unwrap();
+                let f = row[k] * inv;
+                row[k] = f;
+                if f != 0.0 {
+                    for j in k + 1..N {
+                        row[j] -= f * pivot_row[j];
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    /// [`DenseLu::factor`] for any order.
+    fn factor_general(&mut self) -> bool {
         let n = self.n;
         for k in 0..n {
             let below = (k + 1..n).map(|i| (i, self.a[i * n + k]));

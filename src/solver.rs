@@ -254,7 +254,7 @@ impl<const D: usize> JointTerms<D> {
     fn new(prob: &Problem<D>, j: usize, l: &Local<D>) -> Self {
         let n = prob.basis.len();
         let k0 = prob.basis[j].end_coefficient();
-        let k1 = prob.basis[(j + 1) % n].end_coefficient();
+        let k1 = prob.basis[if j + 1 == n { 0 } else { j + 1 }].end_coefficient();
         let tj = triangle(l.cm, l.c0, l.c1);
         let tj1 = triangle(l.c0, l.c1, l.c2);
         JointTerms {
@@ -502,14 +502,6 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         {
             return out;
         }
-        if self.lin_state == LinState::Factored
-            && self.res.len() == n
-            && self.max_residual() <= set.tolerance
-        {
-            out.converged = true;
-            out.residual = self.max_residual();
-            return out;
-        }
         let rest = self.solve(
             prob,
             &Settings {
@@ -525,9 +517,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
     }
 
-    /// Chord steps from the current state with the stored factorization, while each one
-    /// shrinks the merit by `contraction` or better; the state is left at the last
-    /// accepted step. Counts the steps in `out`; `true` (with `out` filled in) if converged.
+    /// Chord steps from the current state with the stored factorization while each one
+    /// shrinks the merit by `contraction` or better; the state is left at the last accepted
+    /// step. Counts the steps in `out`; `true` (with `out` filled in) if converged.
     fn chord_steps(
         &mut self,
         prob: &Problem<D>,
@@ -535,7 +527,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         contraction: f64,
         out: &mut Outcome,
     ) -> bool {
-        let n = self.n();
+        self.trial.clone_from(&self.state);
         let mut phi = self.residual_frozen(prob, set.tolerance);
         for _ in 0..MAX_CHORD {
             if self.max_residual() <= set.tolerance {
@@ -547,31 +539,39 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 break;
             }
             out.iterations += 1;
-            let mut ok = self.condensed_step();
-            self.trial.clone_from(&self.state);
-            if ok {
-                for j in 0..n {
-                    for k in 0..D {
-                        self.trial.c[j][k] += self.step[j * B + k];
-                    }
-                    self.trial.lam[j] += self.step[j * B + D];
-                    self.trial.t[j] = (self.trial.t[j] + self.step[j * B + D + 1]).clamp(0.0, 1.0);
-                    ok &= self.trial.lam[j] > 0.0 && self.trial.lam[j] < 1.0 + 1e-15;
-                }
-            }
-            if !ok {
+            if !self.condensed_step() || !self.step_to_trial() {
                 break;
             }
             core::mem::swap(&mut self.state, &mut self.trial);
             let phi_new = self.residual_frozen(prob, set.tolerance);
             if !(phi_new <= contraction * phi) {
-                // Not contracting: undo and let Newton take over.
+                if self.max_residual() <= set.tolerance {
+                    // Within the tolerance, with the merit at its rounding noise.
+                    out.converged = true;
+                    out.residual = self.max_residual();
+                    return true;
+                }
+                // Not contracting: undo, and Newton takes over (it measures the state
+                // again).
                 core::mem::swap(&mut self.state, &mut self.trial);
                 break;
             }
             phi = phi_new;
         }
         false
+    }
+
+    /// `trial = state + step` (`t` clamped to `[0, 1]`); `false` if a `λ` leaves `(0, 1]`.
+    fn step_to_trial(&mut self) -> bool {
+        let mut ok = true;
+        let (st, tr) = (&self.state, &mut self.trial);
+        for (j, s) in self.step.chunks_exact(B).enumerate() {
+            tr.c[j] = core::array::from_fn(|k| st.c[j][k] + s[k]);
+            tr.lam[j] = st.lam[j] + s[D];
+            tr.t[j] = (st.t[j] + s[D + 1]).clamp(0.0, 1.0);
+            ok &= tr.lam[j] > 0.0 && tr.lam[j] < 1.0 + 1e-15;
+        }
+        ok
     }
 
     /// The residual (and convergence measures) of the current state with the row scales of
@@ -903,6 +903,19 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// Gather the variables of block `j` from `st`.
     #[inline(always)]
     fn local(prob: &Problem<D>, st: &State<D>, j: usize) -> Local<D> {
+        if j >= 1 && j + 2 < st.t.len() {
+            // Interior: no wrap-around and no ghost point.
+            return Local {
+                cm: st.c[j - 1],
+                c0: st.c[j],
+                c1: st.c[j + 1],
+                c2: st.c[j + 2],
+                lm: st.lam[j - 1],
+                l0: st.lam[j],
+                l1: st.lam[j + 1],
+                t: st.t[j],
+            };
+        }
         let c = |i: isize| st.control(prob, i);
         let lam = |i: isize| st.ratio(prob, i);
         let j = j as isize;
