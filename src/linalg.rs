@@ -421,16 +421,20 @@ impl DenseLu {
             }
             let inv = 1.0 / a[k * N + k];
             let (top, below) = a.split_at_mut((k + 1) * N);
-            let pivot_row: &[f64; N] = top[k * N..].try_into().unwrap();
+            // The pivot row's active part, zero elsewhere: every row below is updated over
+            // its whole (fixed) length, which leaves its multipliers (columns < k) as they
+            // are and vectorizes.
+            let mut pivot_row = [0.0; N];
+            pivot_row[k + 1..].copy_from_slice(&top[k * N + k + 1..(k + 1) * N]);
             for row in below.chunks_exact_mut(N) {
                 let row: &mut [f64; N] = row.try_into().unwrap();
                 let f = row[k] * inv;
-                row[k] = f;
                 if f != 0.0 {
-                    for j in k + 1..N {
+                    for j in 0..N {
                         row[j] -= f * pivot_row[j];
                     }
                 }
+                row[k] = f;
             }
         }
         true
