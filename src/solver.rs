@@ -539,7 +539,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 break;
             }
             out.iterations += 1;
-            if !self.condensed_step() || !self.step_to_trial() {
+            if !self.condensed_step() || !self.step_to_trial(1.0) {
                 break;
             }
             core::mem::swap(&mut self.state, &mut self.trial);
@@ -561,14 +561,15 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         false
     }
 
-    /// `trial = state + step` (`t` clamped to `[0, 1]`); `false` if a `λ` leaves `(0, 1]`.
-    fn step_to_trial(&mut self) -> bool {
+    /// `trial = state + scale · step` (`t` clamped to `[0, 1]`); `false` if a `λ` leaves
+    /// `(0, 1]`.
+    fn step_to_trial(&mut self, scale: f64) -> bool {
         let mut ok = true;
         let (st, tr) = (&self.state, &mut self.trial);
         for (j, s) in self.step.chunks_exact(B).enumerate() {
-            tr.c[j] = core::array::from_fn(|k| st.c[j][k] + s[k]);
-            tr.lam[j] = st.lam[j] + s[D];
-            tr.t[j] = (st.t[j] + s[D + 1]).clamp(0.0, 1.0);
+            tr.c[j] = core::array::from_fn(|k| st.c[j][k] + scale * s[k]);
+            tr.lam[j] = st.lam[j] + scale * s[D];
+            tr.t[j] = (st.t[j] + scale * s[D + 1]).clamp(0.0, 1.0);
             ok &= tr.lam[j] > 0.0 && tr.lam[j] < 1.0 + 1e-15;
         }
         ok
@@ -854,13 +855,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         let mut s = smax.max(0.0);
         while s > 1e-10 {
-            for j in 0..n {
-                for k in 0..D {
-                    self.trial.c[j][k] = self.state.c[j][k] + s * self.step[j * B + k];
-                }
-                self.trial.lam[j] = self.state.lam[j] + s * self.step[j * B + D];
-                self.trial.t[j] = (self.state.t[j] + s * self.step[j * B + D + 1]).clamp(0.0, 1.0);
-            }
+            // `s` keeps every λ inside (0, 1).
+            self.step_to_trial(s);
             let phi_trial = self.trial_merit(prob, tol);
             // Near the solution (residual within QUADRATIC_REGION × tolerance) the merit is at
             // its rounding noise for large curves, and a full Newton step is reliable.
