@@ -475,6 +475,46 @@ impl DenseLu {
 
     /// Solve `A x = b` in place with the factors from [`DenseLu::factor`].
     pub(crate) fn solve(&self, b: &mut [f64]) {
+        // The same orders as `factor` get kernels of fixed order; the arithmetic is the same.
+        match self.n {
+            3 => self.solve_fixed::<3>(b),
+            4 => self.solve_fixed::<4>(b),
+            6 => self.solve_fixed::<6>(b),
+            8 => self.solve_fixed::<8>(b),
+            9 => self.solve_fixed::<9>(b),
+            12 => self.solve_fixed::<12>(b),
+            15 => self.solve_fixed::<15>(b),
+            16 => self.solve_fixed::<16>(b),
+            _ => self.solve_general(b),
+        }
+    }
+
+    /// [`DenseLu::solve`] with the order `N` known at compile time.
+    fn solve_fixed<const N: usize>(&self, b: &mut [f64]) {
+        debug_assert_eq!(self.n, N);
+        let b: &mut [f64; N] = b.try_into().unwrap();
+        let piv: &[usize; N] = self.piv[..N].try_into().unwrap();
+        let a = &self.a[..N * N];
+        for k in 0..N {
+            b.swap(k, piv[k]);
+            let bk = b[k];
+            for i in k + 1..N {
+                b[i] -= a[i * N + k] * bk;
+            }
+        }
+        for (k, row) in a.chunks_exact(N).enumerate().rev() {
+            let row: &[f64; N] = row.try_into().unwrap();
+            // As in `solve_general`: the latest unknown enters the sum last.
+            let mut s = -0.0;
+            for j in (k + 1..N).rev() {
+                s += row[j] * b[j];
+            }
+            b[k] = (b[k] - s) * (1.0 / row[k]);
+        }
+    }
+
+    /// [`DenseLu::solve`] for any order.
+    fn solve_general(&self, b: &mut [f64]) {
         let n = self.n;
         for k in 0..n {
             b.swap(k, self.piv[k]);
