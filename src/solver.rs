@@ -188,11 +188,29 @@ pub(crate) struct Problem<const D: usize> {
 }
 
 /// The unknowns.
-#[derive(Clone, Debug, Default)]
+#[derive(Debug, Default)]
 pub(crate) struct State<const D: usize> {
     pub c: Vec<[f64; D]>,
     pub lam: Vec<f64>,
     pub t: Vec<f64>,
+}
+
+impl<const D: usize> Clone for State<D> {
+    fn clone(&self) -> Self {
+        State {
+            c: self.c.clone(),
+            lam: self.lam.clone(),
+            t: self.t.clone(),
+        }
+    }
+
+    /// Copies into the existing buffers (the derived `clone_from` would allocate new ones):
+    /// the solver copies states between iterations.
+    fn clone_from(&mut self, source: &Self) {
+        self.c.clone_from(&source.c);
+        self.lam.clone_from(&source.lam);
+        self.t.clone_from(&source.t);
+    }
 }
 
 impl<const D: usize> State<D> {
