@@ -463,6 +463,9 @@ pub(crate) struct Workspace<const D: usize, const B: usize> {
     /// [`START_PEAK_T_TOLERANCE`] (set for the first attempt of a cold solve only, so that
     /// the fallbacks start as carefully as they always did).
     loose_start: bool,
+    /// The end terms of the last basis the classic loop met (a function of the basis
+    /// alone, so they stay valid from one iteration and solve to the next).
+    ends: Option<EndTerms>,
 }
 
 impl<const D: usize, const B: usize> Workspace<D, B> {
@@ -1226,12 +1229,12 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             a.resize(n, 0.0);
         }
         self.tri_d.resize(n, [0.0; D]);
-        let mut ends = None;
+        let ends = &mut self.ends;
         for j in 0..n {
             let l = Self::local(prob, &self.state, j);
             let [q0, _, q2] = self.state.segment(prob, j);
             let basis = prob.basis[j];
-            let t = peak_parameter(basis, &mut ends, q0, q2, prob.p[j], l.t, start);
+            let t = peak_parameter(basis, ends, q0, q2, prob.p[j], l.t, start);
             self.state.t[j] = t;
             let w = basis.weights(t);
             let (w0, w2) = (w[0][0], w[0][1]);
