@@ -459,10 +459,6 @@ pub(crate) struct Workspace<const D: usize, const B: usize> {
     tri: [Vec<f64>; 3],
     tri_d: Vec<[f64; D]>,
     scratch: TriScratch,
-    /// The classic iterations that start Newton solve for `t` to
-    /// [`START_PEAK_T_TOLERANCE`] (set for the first attempt of a cold solve only, so that
-    /// the fallbacks start as carefully as they always did).
-    loose_start: bool,
     /// The end terms of the last basis the classic loop met (a function of the basis
     /// alone, so they stay valid from one iteration and solve to the next).
     ends: Option<EndTerms>,
@@ -542,6 +538,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 ..*set
             },
             0,
+            false,
         );
         Outcome {
             iterations: out.iterations + rest.iterations,
@@ -659,15 +656,23 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     }
 
     /// Solve from the current state (a cold start or a previous solution), after `classic`
-    /// iterations of the classic loop.
-    pub(crate) fn solve(&mut self, prob: &Problem<D>, set: &Settings, classic: usize) -> Outcome {
+    /// iterations of the classic loop; with `loose`, those solve for `t` only to
+    /// [`START_PEAK_T_TOLERANCE`] (the first attempt of a cold solve: the fallbacks start as
+    /// carefully as they always did).
+    pub(crate) fn solve(
+        &mut self,
+        prob: &Problem<D>,
+        set: &Settings,
+        classic: usize,
+        loose: bool,
+    ) -> Outcome {
         let n = prob.p.len();
         debug_assert_eq!(self.n(), n);
         self.trial.clone_from(&self.state);
         self.size_buffers(n);
         let mut out = Outcome::default();
         for _ in 0..classic.min(set.max_iterations) {
-            self.classic_iteration(prob, self.loose_start);
+            self.classic_iteration(prob, loose);
             out.iterations += 1;
         }
         loop {
@@ -742,9 +747,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 ..*set
             };
             self.cold_start(prob);
-            self.loose_start = attempt == 0;
-            let mut out = self.solve(prob, &budget, classic);
-            self.loose_start = false;
+            let mut out = self.solve(prob, &budget, classic, attempt == 0);
             total += out.iterations;
             out.iterations = total;
             if out.converged {
@@ -810,7 +813,12 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             max_iterations: cap.min(set.max_iterations.saturating_sub(total)),
             ..*set
         };
-        let first = self.solve(scratch, &budget(total, ATTEMPT_BUDGET), CLASSIC_START);
+        let first = self.solve(
+            scratch,
+            &budget(total, ATTEMPT_BUDGET),
+            CLASSIC_START,
+            false,
+        );
         total += first.iterations;
         if !first.converged {
             out.iterations = total;
@@ -822,7 +830,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         while s < 1.0 && total < set.max_iterations && ds > MIN_STEP {
             let s_try = (s + ds).min(1.0);
             blend(scratch, s_try);
-            let step = self.solve(scratch, &budget(total, STEP_BUDGET), 0);
+            let step = self.solve(scratch, &budget(total, STEP_BUDGET), 0, false);
             total += step.iterations;
             if step.converged {
                 s = s_try;
@@ -834,7 +842,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             }
         }
         // Final polish on the true problem (s = 1 exactly reproduces its shapes).
-        let fin = self.solve(prob, &budget(total, STEP_BUDGET), 0);
+        let fin = self.solve(prob, &budget(total, STEP_BUDGET), 0, false);
         out = fin;
         out.iterations = total + fin.iterations;
         out
