@@ -122,6 +122,7 @@ pub mod glyph;
 pub mod input;
 pub mod intrinsic;
 mod linalg;
+mod parallel;
 mod point3;
 #[cfg(feature = "render")]
 pub mod render;

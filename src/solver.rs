@@ -27,7 +27,8 @@
 //! control points `c_{-1} = p_first`, `c_n = p_last` and `λ_{-1} = 0`, `λ_{n-1} = 1`.
 
 use crate::basis::{Basis, SegmentBasis, Stationarity};
-use crate::linalg::{solve_tridiagonal, BandLu, BorderedLu, DenseLu, TriScratch};
+use crate::linalg::{solve_tridiagonal, BandLu, BorderedLu, DenseLu, SplitLu, TriScratch};
+use crate::parallel::join;
 
 /// Regularization of the squared doubled triangle area, in normalized coordinates (drawing
 /// size 1): keeps the area differentiable for straight stretches while far below any real
@@ -323,6 +324,9 @@ struct Linear {
     band: BandLu,
     bord: BorderedLu,
     dense: DenseLu,
+    split: SplitLu,
+    /// How the blocks are cut in [`LinearMode::Split`].
+    cut: Option<Split>,
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -331,6 +335,100 @@ enum LinearMode {
     Band,
     Bordered,
     Dense,
+    /// Long curves: two halves and a border ([`SplitLu`]), side by side.
+    Split,
+}
+
+/// Curves of this many blocks or more are solved in two halves (see [`Split`]).
+pub(crate) const SPLIT_MIN_BLOCKS: usize = 2048;
+
+/// The length from which curves are cut ([`SPLIT_MIN_BLOCKS`]; the unit tests lower it to
+/// cut short curves).
+#[cfg(not(test))]
+fn split_min() -> usize {
+    SPLIT_MIN_BLOCKS
+}
+
+#[cfg(test)]
+thread_local! {
+    static SPLIT_MIN: core::cell::Cell<usize> = const { core::cell::Cell::new(SPLIT_MIN_BLOCKS) };
+}
+
+#[cfg(test)]
+fn split_min() -> usize {
+    SPLIT_MIN.with(|c| c.get())
+}
+
+/// How the blocks of a long curve are cut: the first half `0..m`, a separator of two blocks
+/// `m..m + 2`, the second half `m + 2..end`, and the tail `end..n` (the two blocks that
+/// close a closed curve; empty for an open one). The blocks of a half touch only their own
+/// half and the border (separator and tail), so the halves are worked on side by side.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Split {
+    m: usize,
+    end: usize,
+    n: usize,
+}
+
+impl Split {
+    /// The cut of `n` blocks, if the curve is long enough to be cut.
+    pub(crate) fn of(closed: bool, n: usize) -> Option<Split> {
+        (n >= split_min().max(8)).then(|| Split {
+            m: n / 2,
+            end: if closed { n - 2 } else { n },
+            n,
+        })
+    }
+
+    /// Where the block ranges of [`ranges`](Self::ranges) meet.
+    fn cuts(&self) -> [usize; 3] {
+        [self.m, self.m + 2, self.end]
+    }
+
+    /// The block ranges: first half, separator, second half, tail.
+    fn ranges(&self) -> [core::ops::Range<usize>; 4] {
+        [
+            0..self.m,
+            self.m..self.m + 2,
+            self.m + 2..self.end,
+            self.end..self.n,
+        ]
+    }
+}
+
+/// A block's condensed Jacobian: `jl[row][offset][variable]`, the stencil blocks `j - 1 ..=
+/// j + 2` as offsets `0..4`.
+type BlockJacobian<const B: usize> = [[[f64; B]; 4]; B];
+
+/// Add the first `rows` rows of a condensed block Jacobian (variables `0..rows` of each
+/// stencil block) at row `row0`, in the columns of `columns`, through `add(row, column, v)`.
+#[inline(always)]
+fn scatter<const B: usize>(
+    row0: usize,
+    rows: usize,
+    jl: &BlockJacobian<B>,
+    columns: &Columns,
+    mut add: impl FnMut(usize, usize, f64),
+) {
+    for (row, entries) in jl.iter().enumerate().take(rows) {
+        for (o, block) in entries.iter().enumerate() {
+            for (k, &v) in block.iter().enumerate().take(rows) {
+                if v != 0.0 {
+                    if let Some(c) = columns.at(o, k) {
+                        add(row0 + row, c, v);
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// `s` cut at `cuts` (ascending) into four pieces.
+fn split4<T>(s: &mut [T], [a, b, c]: [usize; 3]) -> [&mut [T]; 4] {
+    let (s0, rest) = s.split_at_mut(a);
+    let (s1, rest) = rest.split_at_mut(b - a);
+    let (s2, s3) = rest.split_at_mut(c - b);
+    [s0, s1, s2, s3]
 }
 
 /// Systems up to this order are solved densely (a few small closed curves are the common
@@ -342,6 +440,13 @@ impl Linear {
         // Block row j touches block columns j-1 ..= j+2, but only the G2 row (row D of the
         // block) reaches block j+2, and only its c part: ku = 2B - 1, kl = 2B - 1.
         let (kl, ku) = (2 * b - 1, 2 * b - 1);
+        self.cut = Split::of(closed, n);
+        if let Some(split) = self.cut {
+            self.mode = LinearMode::Split;
+            let cuts = [split.m * b, (split.m + 2) * b, split.end * b];
+            self.split.reset(cuts, n * b, b, kl, ku);
+            return;
+        }
         self.mode = if n * b <= DENSE_ORDER {
             LinearMode::Dense
         } else if closed {
@@ -353,40 +458,21 @@ impl Linear {
             LinearMode::Dense => self.dense.reset(n * b),
             LinearMode::Bordered => self.bord.reset((n - 2) * b, 2 * b, kl, ku),
             LinearMode::Band => self.band.reset(n * b, kl, ku),
+            LinearMode::Split => unreachable!("set above"),
         }
     }
 
-    /// Add the first `rows` rows of a condensed block Jacobian (`jl[row][offset][variable]`,
-    /// variables `0..rows` of each stencil block) at row `row0`, in the columns of `columns`.
+    /// Add the first `rows` rows of a condensed block Jacobian at row `row0`, in the columns
+    /// of `columns` (see [`scatter`]).
     #[inline]
     fn add_block<const B: usize>(
         &mut self,
         row0: usize,
         rows: usize,
-        jl: &[[[f64; B]; 4]; B],
+        jl: &BlockJacobian<B>,
         columns: &Columns,
     ) {
         // One dispatch per block, not per entry.
-        #[inline(always)]
-        fn scatter<const B: usize>(
-            row0: usize,
-            rows: usize,
-            jl: &[[[f64; B]; 4]; B],
-            columns: &Columns,
-            mut add: impl FnMut(usize, usize, f64),
-        ) {
-            for (row, entries) in jl.iter().enumerate().take(rows) {
-                for (o, block) in entries.iter().enumerate() {
-                    for (k, &v) in block.iter().enumerate().take(rows) {
-                        if v != 0.0 {
-                            if let Some(c) = columns.at(o, k) {
-                                add(row0 + row, c, v);
-                            }
-                        }
-                    }
-                }
-            }
-        }
         match self.mode {
             LinearMode::Dense => {
                 let m = &mut self.dense;
@@ -400,6 +486,10 @@ impl Linear {
                 let m = &mut self.band;
                 scatter(row0, rows, jl, columns, |i, j, v| m.add(i, j, v));
             }
+            LinearMode::Split => {
+                let m = &mut self.split;
+                scatter(row0, rows, jl, columns, |i, j, v| m.add(i, j, v));
+            }
         }
     }
 
@@ -408,6 +498,7 @@ impl Linear {
             LinearMode::Dense => self.dense.factor(),
             LinearMode::Bordered => self.bord.factor(),
             LinearMode::Band => self.band.factor(),
+            LinearMode::Split => self.split.factor(),
         }
     }
 
@@ -416,6 +507,7 @@ impl Linear {
             LinearMode::Dense => self.dense.solve(x),
             LinearMode::Bordered => self.bord.solve(x),
             LinearMode::Band => self.band.solve(x),
+            LinearMode::Split => self.split.solve(x),
         }
     }
 }
@@ -630,8 +722,36 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     ) -> f64 {
         debug_assert!(scale.len() == st.t.len() && res.len() == st.t.len());
         debug_assert_eq!(check.len(), st.t.len());
+        let Some(split) = Split::of(prob.closed, st.t.len()) else {
+            return Self::residuals_from::<FROZEN>(prob, st, 0, scale, res, check, tol);
+        };
+        let cuts = split.cuts();
+        let [s0, s1, s2, s3] = split4(scale, cuts);
+        let [r0, r1, r2, r3] = split4(res, cuts);
+        let [c0, c1, c2, c3] = split4(check, cuts);
+        let [j0, j1, j2, j3] = split.ranges().map(|r| r.start);
+        let (p0, p2) = join(
+            || Self::residuals_from::<FROZEN>(prob, st, j0, s0, r0, c0, tol),
+            || Self::residuals_from::<FROZEN>(prob, st, j2, s2, r2, c2, tol),
+        );
+        let p1 = Self::residuals_from::<FROZEN>(prob, st, j1, s1, r1, c1, tol);
+        let p3 = Self::residuals_from::<FROZEN>(prob, st, j3, s3, r3, c3, tol);
+        ((p0 + p1) + p2) + p3
+    }
+
+    /// [`residuals`](Self::residuals) of the blocks `j0..j0 + res.len()`.
+    fn residuals_from<const FROZEN: bool>(
+        prob: &Problem<D>,
+        st: &State<D>,
+        j0: usize,
+        scale: &mut [[f64; 2]],
+        res: &mut [[f64; B]],
+        check: &mut [[f64; B]],
+        tol: f64,
+    ) -> f64 {
         let mut phi = 0.0;
-        for (j, ((scale, res), check)) in scale.iter_mut().zip(res).zip(check).enumerate() {
+        for (i, ((scale, res), check)) in scale.iter_mut().zip(res).zip(check).enumerate() {
+            let j = j0 + i;
             let loc = Self::local(prob, st, j);
             let mut g2 = 0.0;
             let mut ignore = |_: usize, _: Var, _: f64| {};
@@ -923,19 +1043,64 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let n = self.n();
         let bb = B - 1;
         self.reduced.resize(n * bb, 0.0);
-        for (j, (r, c)) in self.res.iter().zip(&self.cond).enumerate() {
-            for k in 0..bb {
-                self.reduced[j * bb + k] = -(r[k] - c.m[k] * r[D + 1]);
-            }
+        let Some(split) = self.lin.cut else {
+            Self::reduce_from(&self.res, &self.cond, &mut self.reduced);
+            self.lin.solve(&mut self.reduced);
+            return Self::recover_from(0, &self.res, &self.cond, &self.reduced, &mut self.step);
+        };
+        let cuts = split.cuts();
+        {
+            let [r0, r1, r2, r3] = split4(&mut self.reduced, cuts.map(|c| c * bb));
+            let (res, cond) = (&self.res, &self.cond);
+            let [j0, j1, j2, j3] = split.ranges();
+            join(
+                || Self::reduce_from(&res[j0.clone()], &cond[j0], r0),
+                || Self::reduce_from(&res[j2.clone()], &cond[j2], r2),
+            );
+            Self::reduce_from(&res[j1.clone()], &cond[j1], r1);
+            Self::reduce_from(&res[j3.clone()], &cond[j3], r3);
         }
         self.lin.solve(&mut self.reduced);
-        for j in 0..n {
-            let c = &self.cond[j];
-            let acc = -self.res[j][D + 1] - c.row_dot(&self.reduced);
-            self.step[j * B..j * B + bb].copy_from_slice(&self.reduced[j * bb..(j + 1) * bb]);
-            self.step[j * B + D + 1] = acc / c.p;
+        let [s0, s1, s2, s3] = split4(&mut self.step, cuts.map(|c| c * B));
+        let (res, cond, reduced) = (&self.res, &self.cond, &self.reduced);
+        let [j0, j1, j2, j3] = split.ranges();
+        let (ok0, ok2) = join(
+            || Self::recover_from(j0.start, &res[j0.clone()], &cond[j0], reduced, s0),
+            || Self::recover_from(j2.start, &res[j2.clone()], &cond[j2], reduced, s2),
+        );
+        let ok1 = Self::recover_from(j1.start, &res[j1.clone()], &cond[j1], reduced, s1);
+        let ok3 = Self::recover_from(j3.start, &res[j3.clone()], &cond[j3], reduced, s3);
+        ok0 && ok1 && ok2 && ok3
+    }
+
+    /// The condensed right-hand side of the blocks of `res` (`reduced` holds theirs).
+    fn reduce_from(res: &[[f64; B]], cond: &[Condensed<B>], reduced: &mut [f64]) {
+        let bb = B - 1;
+        for ((r, c), out) in res.iter().zip(cond).zip(reduced.chunks_exact_mut(bb)) {
+            for k in 0..bb {
+                out[k] = -(r[k] - c.m[k] * r[D + 1]);
+            }
         }
-        self.step.iter().all(|x| x.is_finite())
+    }
+
+    /// The step of the blocks `j0..` of `res` (`step` holds theirs) from the condensed
+    /// solution `reduced` (all of it): their condensed unknowns, and `δt` recovered from
+    /// the peak rows. `false` if it is not finite.
+    fn recover_from(
+        j0: usize,
+        res: &[[f64; B]],
+        cond: &[Condensed<B>],
+        reduced: &[f64],
+        step: &mut [f64],
+    ) -> bool {
+        let bb = B - 1;
+        let own = reduced[j0 * bb..].chunks_exact(bb);
+        for (((r, c), out), x) in res.iter().zip(cond).zip(step.chunks_exact_mut(B)).zip(own) {
+            let acc = -r[D + 1] - c.row_dot(reduced);
+            out[..bb].copy_from_slice(x);
+            out[D + 1] = acc / c.p;
+        }
+        step.iter().all(|x| x.is_finite())
     }
 
     /// Gather the variables of block `j` from `st`.
@@ -1022,9 +1187,73 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// current state. Returns the merit `½|R|²`.
     fn assemble(&mut self, prob: &Problem<D>, tol: f64) -> f64 {
         let n = self.n();
+        let st = &self.state;
+        let Some(split) = Split::of(prob.closed, n) else {
+            let lin = &mut self.lin;
+            let mut add = |row0: usize, jl: &BlockJacobian<B>, columns: &Columns| {
+                lin.add_block::<B>(row0, D + 1, jl, columns)
+            };
+            let (cond, scale, check, res) = (
+                &mut self.cond[..],
+                &mut self.scale[..],
+                &mut self.check[..],
+                &mut self.res[..],
+            );
+            return Self::assemble_from(prob, st, 0, cond, scale, check, res, tol, &mut add);
+        };
+        // The halves' rows go to the halves' own storage, side by side; the border rows
+        // (separator and tail) after them.
+        let cuts = split.cuts();
+        let [k0, k1, k2, k3] = split4(&mut self.cond, cuts);
+        let [s0, s1, s2, s3] = split4(&mut self.scale, cuts);
+        let [c0, c1, c2, c3] = split4(&mut self.check, cuts);
+        let [r0, r1, r2, r3] = split4(&mut self.res, cuts);
+        let [j0, j1, j2, j3] = split.ranges().map(|r| r.start);
+        let [mut h0, mut h2] = self.lin.split.halves();
+        let (p0, p2) = join(
+            || {
+                let mut add = |row0: usize, jl: &BlockJacobian<B>, columns: &Columns| {
+                    scatter(row0, D + 1, jl, columns, |i, j, v| h0.add(i, j, v))
+                };
+                Self::assemble_from(prob, st, j0, k0, s0, c0, r0, tol, &mut add)
+            },
+            || {
+                let mut add = |row0: usize, jl: &BlockJacobian<B>, columns: &Columns| {
+                    scatter(row0, D + 1, jl, columns, |i, j, v| h2.add(i, j, v))
+                };
+                Self::assemble_from(prob, st, j2, k2, s2, c2, r2, tol, &mut add)
+            },
+        );
+        let lin = &mut self.lin.split;
+        let mut add = |row0: usize, jl: &BlockJacobian<B>, columns: &Columns| {
+            scatter(row0, D + 1, jl, columns, |i, j, v| lin.add(i, j, v))
+        };
+        let p1 = Self::assemble_from(prob, st, j1, k1, s1, c1, r1, tol, &mut add);
+        let p3 = Self::assemble_from(prob, st, j3, k3, s3, c3, r3, tol, &mut add);
+        ((p0 + p1) + p2) + p3
+    }
+
+    /// [`assemble`](Self::assemble) for the blocks `j0..j0 + res.len()`: their residuals,
+    /// convergence measures, row scales and condensations, and their condensed Jacobian
+    /// rows through `add` (first row, the block's Jacobian, its columns).
+    #[allow(clippy::too_many_arguments)]
+    fn assemble_from(
+        prob: &Problem<D>,
+        st: &State<D>,
+        j0: usize,
+        cond: &mut [Condensed<B>],
+        scale: &mut [[f64; 2]],
+        check: &mut [[f64; B]],
+        res: &mut [[f64; B]],
+        tol: f64,
+        add: &mut impl FnMut(usize, &BlockJacobian<B>, &Columns),
+    ) -> f64 {
+        let n = st.t.len();
         let mut phi = 0.0;
-        for j in 0..n {
-            let loc = Self::local(prob, &self.state, j);
+        let blocks = cond.iter_mut().zip(scale).zip(check).zip(res).enumerate();
+        for (i, (((cond, scale_j), check), res)) in blocks {
+            let j = j0 + i;
+            let loc = Self::local(prob, st, j);
             let mut scale = [1.0; 2];
             let mut g2 = 0.0;
             let mut jl = [[[0.0; B]; 4]; B];
@@ -1038,15 +1267,14 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             };
             let r = Self::eval_block::<true, false>(prob, j, &loc, &mut scale, &mut g2, &mut sink);
             let columns = Columns::new::<D, B>(prob.closed, n, j, B - 1);
-            self.cond[j] = condense::<D, B>(&mut jl, &columns);
-            self.lin.add_block::<B>(j * (B - 1), D + 1, &jl, &columns);
-            self.scale[j] = scale;
-            self.check[j] = Self::check_row(r, g2, &loc, tol);
-            let rs = r;
-            for v in rs.iter() {
+            *cond = condense::<D, B>(&mut jl, &columns);
+            add(j * (B - 1), &jl, &columns);
+            *scale_j = scale;
+            *check = Self::check_row(r, g2, &loc, tol);
+            for v in r.iter() {
                 phi += 0.5 * v * v;
             }
-            self.res[j] = rs;
+            *res = r;
         }
         phi
     }
@@ -1212,61 +1440,125 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// (cyclic) tridiagonal system for the `c_j`.
     pub(crate) fn classic_iteration(&mut self, prob: &Problem<D>, start: bool) {
         let n = self.n();
-        // λ (Jacobi style: from the previous λ's).
-        for j in 0..n {
-            if !prob.closed && j == n - 1 {
-                continue;
+        for a in self.tri.iter_mut() {
+            a.resize(n, 0.0);
+        }
+        self.tri_d.resize(n, [0.0; D]);
+        let split = Split::of(prob.closed, n);
+        // λ (Jacobi style: from the previous λ's), into `trial.lam`.
+        let st = &self.state;
+        match split {
+            None => Self::ratios_from(prob, st, 0, &mut self.trial.lam),
+            Some(split) => {
+                let [l0, l1, l2, l3] = split4(&mut self.trial.lam, split.cuts());
+                let [j0, j1, j2, j3] = split.ranges().map(|r| r.start);
+                join(
+                    || Self::ratios_from(prob, st, j0, l0),
+                    || Self::ratios_from(prob, st, j2, l2),
+                );
+                Self::ratios_from(prob, st, j1, l1);
+                Self::ratios_from(prob, st, j3, l3);
             }
-            let l = Self::local(prob, &self.state, j);
-            let jt = JointTerms::new(prob, j, &l);
-            let (a, b) = (jt.x.sqrt(), jt.y.sqrt());
-            let lam = a / (a + b);
-            self.trial.lam[j] = if lam.is_finite() {
-                lam.clamp(LAMBDA_MIN, 1.0 - LAMBDA_MIN)
-            } else {
-                0.5
-            };
         }
         for j in 0..n {
             if prob.closed || j + 1 < n {
                 self.state.lam[j] = self.trial.lam[j];
             }
         }
-        // t, and the coefficients of the linear system.
-        for a in self.tri.iter_mut() {
-            a.resize(n, 0.0);
-        }
-        self.tri_d.resize(n, [0.0; D]);
-        let ends = &mut self.ends;
-        for j in 0..n {
-            let l = Self::local(prob, &self.state, j);
-            let [q0, _, q2] = self.state.segment(prob, j);
-            let basis = prob.basis[j];
-            let t = peak_parameter(basis, ends, q0, q2, prob.p[j], l.t, start);
-            self.state.t[j] = t;
-            let w = basis.weights(t);
-            let (w0, w2) = (w[0][0], w[0][1]);
-            let mut d = prob.p[j];
-            let a = w0 * (1.0 - l.lm);
-            let c = w2 * l.l0;
-            self.tri[0][j] = a;
-            self.tri[1][j] = 1.0 - a - c;
-            self.tri[2][j] = c;
-            if !prob.closed {
-                if j == 0 {
-                    d = core::array::from_fn(|k| d[k] - a * prob.ghost[0][k]);
-                }
-                if j == n - 1 {
-                    d = core::array::from_fn(|k| d[k] - c * prob.ghost[1][k]);
-                }
+        // t, and the coefficients of the linear system; `t` into `trial.t`.
+        let st = &self.state;
+        let [a, b, c] = &mut self.tri;
+        match split {
+            None => {
+                let out = (&mut self.trial.t[..], &mut a[..], &mut b[..], &mut c[..]);
+                Self::peaks_from(prob, st, 0, &mut self.ends, start, out, &mut self.tri_d);
             }
-            self.tri_d[j] = d;
+            Some(split) => {
+                let cuts = split.cuts();
+                let [t0, t1, t2, t3] = split4(&mut self.trial.t, cuts);
+                let [a0, a1, a2, a3] = split4(a, cuts);
+                let [b0, b1, b2, b3] = split4(b, cuts);
+                let [c0, c1, c2, c3] = split4(c, cuts);
+                let [d0, d1, d2, d3] = split4(&mut self.tri_d, cuts);
+                let [j0, j1, j2, j3] = split.ranges().map(|r| r.start);
+                let ends = &mut self.ends;
+                // The end terms are a function of the basis: the second half keeps its own.
+                let mut ends2 = *ends;
+                join(
+                    || Self::peaks_from(prob, st, j0, ends, start, (t0, a0, b0, c0), d0),
+                    || Self::peaks_from(prob, st, j2, &mut ends2, start, (t2, a2, b2, c2), d2),
+                );
+                Self::peaks_from(prob, st, j1, ends, start, (t1, a1, b1, c1), d1);
+                Self::peaks_from(prob, st, j3, ends, start, (t3, a3, b3, c3), d3);
+            }
         }
+        core::mem::swap(&mut self.state.t, &mut self.trial.t);
         let [a, b, c] = &self.tri;
         if solve_tridiagonal(a, b, c, &mut self.tri_d, prob.closed, &mut self.scratch)
             && self.tri_d.iter().all(|v| v.iter().all(|x| x.is_finite()))
         {
             self.state.c.copy_from_slice(&self.tri_d);
+        }
+    }
+
+    /// The classic loop's `λ` of the blocks `j0..j0 + lam.len()` into `lam` (an open curve's
+    /// last one is left as it is).
+    fn ratios_from(prob: &Problem<D>, st: &State<D>, j0: usize, lam: &mut [f64]) {
+        let n = st.t.len();
+        for (i, out) in lam.iter_mut().enumerate() {
+            let j = j0 + i;
+            if !prob.closed && j == n - 1 {
+                continue;
+            }
+            let l = Self::local(prob, st, j);
+            let jt = JointTerms::new(prob, j, &l);
+            let (a, b) = (jt.x.sqrt(), jt.y.sqrt());
+            let lam = a / (a + b);
+            *out = if lam.is_finite() {
+                lam.clamp(LAMBDA_MIN, 1.0 - LAMBDA_MIN)
+            } else {
+                0.5
+            };
+        }
+    }
+
+    /// The classic loop's peak parameters `t` of the blocks `j0..j0 + t.len()` (into `t`)
+    /// and their rows of the tridiagonal system for the control points (`a`, `b`, `c`, `d`).
+    #[allow(clippy::type_complexity)]
+    fn peaks_from(
+        prob: &Problem<D>,
+        st: &State<D>,
+        j0: usize,
+        ends: &mut Option<EndTerms>,
+        start: bool,
+        (t, a, b, c): (&mut [f64], &mut [f64], &mut [f64], &mut [f64]),
+        d: &mut [[f64; D]],
+    ) {
+        let n = st.t.len();
+        let rows = t.iter_mut().zip(a).zip(b).zip(c).zip(d).enumerate();
+        for (i, ((((t, a), b), c), d)) in rows {
+            let j = j0 + i;
+            let l = Self::local(prob, st, j);
+            let [q0, _, q2] = st.segment(prob, j);
+            let basis = prob.basis[j];
+            *t = peak_parameter(basis, ends, q0, q2, prob.p[j], l.t, start);
+            let w = basis.weights(*t);
+            let (w0, w2) = (w[0][0], w[0][1]);
+            let mut dj = prob.p[j];
+            let aj = w0 * (1.0 - l.lm);
+            let cj = w2 * l.l0;
+            *a = aj;
+            *b = 1.0 - aj - cj;
+            *c = cj;
+            if !prob.closed {
+                if j == 0 {
+                    dj = core::array::from_fn(|k| dj[k] - aj * prob.ghost[0][k]);
+                }
+                if j == n - 1 {
+                    dj = core::array::from_fn(|k| dj[k] - cj * prob.ghost[1][k]);
+                }
+            }
+            *d = dj;
         }
     }
 }
@@ -1895,6 +2187,81 @@ mod linear_tests {
             check::<3, 5>(false, n);
             check::<2, 4>(true, n);
             check::<3, 5>(true, n);
+        }
+    }
+
+    /// Runs `f` with curves of `min` blocks or more cut in two halves.
+    fn with_split_min<R>(min: usize, f: impl FnOnce() -> R) -> R {
+        let old = super::SPLIT_MIN.with(|c| c.replace(min));
+        let r = f();
+        super::SPLIT_MIN.with(|c| c.set(old));
+        r
+    }
+
+    #[test]
+    fn split_solve_matches_dense() {
+        // The halves, the separator and the tail of a cut curve (classic iteration, Jacobian
+        // assembly, condensed solve, recovery of δt) against the dense Newton system.
+        with_split_min(8, || {
+            for &n in &[8, 9, 10, 17, 31] {
+                check::<2, 4>(false, n);
+                check::<3, 5>(false, n);
+                check::<2, 4>(true, n);
+                check::<3, 5>(true, n);
+            }
+        });
+    }
+
+    #[test]
+    fn split_solves_match_whole_ones() {
+        // Whole solves of curves cut in two halves converge to the same curves as uncut.
+        for closed in [true, false] {
+            for (basis, n) in [
+                (Basis::QUADRATIC, 40),
+                (Basis::Cubic(crate::basis::CubicEk::new(0.85)), 41),
+            ] {
+                let p: Vec<[f64; 2]> = (0..n)
+                    .map(|i| {
+                        let th = i as f64 / n as f64 * std::f64::consts::TAU;
+                        let r = if i % 2 == 0 { 1.0 } else { 0.9 };
+                        [r * th.cos(), r * th.sin()]
+                    })
+                    .collect();
+                let prob = Problem {
+                    closed,
+                    p,
+                    ghost: [[1.2, -0.1], [1.2, 0.1]],
+                    basis: vec![basis; n],
+                };
+                let set = Settings {
+                    tolerance: 1e-12,
+                    max_iterations: 200,
+                    newton_chords: true,
+                };
+                let solve = || {
+                    let mut ws = Workspace::<2, 4>::default();
+                    let mut scratch = Problem {
+                        closed,
+                        p: vec![],
+                        ghost: [[0.0; 2]; 2],
+                        basis: vec![],
+                    };
+                    let out = ws.solve_cold(&prob, &set, &mut scratch);
+                    (out, ws.state)
+                };
+                let (whole, a) = solve();
+                let (cut, b) = with_split_min(8, solve);
+                assert!(whole.converged && cut.converged, "{closed} {n}");
+                for (x, y) in a.c.iter().zip(&b.c) {
+                    assert!(
+                        (x[0] - y[0]).abs() + (x[1] - y[1]).abs() < 1e-10,
+                        "{closed} {n}"
+                    );
+                }
+                for (x, y) in a.t.iter().zip(&b.t) {
+                    assert!((x - y).abs() < 1e-8, "{closed} {n}: {x} vs {y}");
+                }
+            }
         }
     }
 }

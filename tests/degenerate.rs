@@ -530,6 +530,30 @@ fn a_hundred_thousand_points() {
 }
 
 #[test]
+fn long_curves_open_and_closed_in_every_scheme() {
+    // Curves of thousands of points are solved in two halves and a border, side by side:
+    // open and closed, every 2D scheme, and the κ-space chain in 3D.
+    let closed = star_loop(4_001);
+    all_solve(&closed, true, "4001-point loop");
+    let open: Vec<Point> = (0..3_000)
+        .map(|i| {
+            let x = i as f64;
+            let wobble = if i % 2 == 0 { 3.0 } else { -3.0 };
+            Point::new(x, 40.0 * (x * 0.013).sin() + wobble)
+        })
+        .collect();
+    all_solve(&open, false, "3000-point open curve");
+    space(&closed, true, |i| (i % 3) as f64, "4001-point loop in 3D").unwrap();
+    space(
+        &open,
+        false,
+        |i| 2.0 * (i % 2) as f64,
+        "3000-point open curve in 3D",
+    )
+    .unwrap();
+}
+
+#[test]
 fn coordinates_at_1e_minus_9_and_1e9() {
     let base = pentagon();
     let reference = all_solve(&base, true, "unit");
