@@ -929,7 +929,7 @@ pub(crate) fn solve_tridiagonal<const D: usize>(
     scratch: &mut TriScratch,
 ) -> bool {
     let n = d.len();
-    let TriScratch { cp, u } = scratch;
+    let TriScratch { cp, cp2, u } = scratch;
     cp.clear();
     cp.resize(n, 0.0);
     if !cyclic || n < 3 {
@@ -943,9 +943,21 @@ pub(crate) fn solve_tridiagonal<const D: usize>(
     u.resize(n, [0.0]);
     u[0] = [gamma];
     u[n - 1] = [c[n - 1]];
-    // Solve T z = u and T y = d.
-    let mut ok = thomas(a, b, c, u, cp, Some((b0, bn)));
-    ok &= thomas(a, b, c, d, cp, Some((b0, bn)));
+    // Solve T z = u and T y = d (long systems side by side: each solve is one chain of
+    // divisions).
+    let ends = Some((b0, bn));
+    let ok = if n >= PARALLEL_TRIDIAGONAL {
+        cp2.clear();
+        cp2.resize(n, 0.0);
+        let (ok_u, ok_d) = crate::parallel::join(
+            || thomas(a, b, c, u, cp2, ends),
+            || thomas(a, b, c, d, cp, ends),
+        );
+        ok_u && ok_d
+    } else {
+        let ok = thomas(a, b, c, u, cp, ends);
+        ok & thomas(a, b, c, d, cp, ends)
+    };
     if !ok {
         return false;
     }
@@ -969,8 +981,14 @@ pub(crate) fn solve_tridiagonal<const D: usize>(
 #[derive(Clone, Debug, Default)]
 pub(crate) struct TriScratch {
     cp: Vec<f64>,
+    /// The multipliers of the second of two solves run side by side.
+    cp2: Vec<f64>,
     u: Vec<[f64; 1]>,
 }
+
+/// Cyclic tridiagonal systems of this order or more solve their two Thomas passes side by
+/// side.
+const PARALLEL_TRIDIAGONAL: usize = 2048;
 
 /// Thomas algorithm with vector right-hand sides; `ends` overrides `b_0` and `b_{n-1}`.
 fn thomas<const D: usize>(
@@ -1468,6 +1486,32 @@ mod tests {
                         assert!((x[i][k] - col[i]).abs() < 1e-10, "n={n} cyclic={cyclic}");
                     }
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn long_cyclic_tridiagonal_solves() {
+        // Long enough for the two Thomas passes to run side by side: A x = d checked row by
+        // row.
+        let mut seed = 9;
+        let n = PARALLEL_TRIDIAGONAL + 5;
+        let a: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
+        let c: Vec<f64> = (0..n).map(|_| lcg(&mut seed)).collect();
+        let b: Vec<f64> = (0..n).map(|_| 2.5 + lcg(&mut seed)).collect();
+        let d: Vec<[f64; 2]> = (0..n).map(|_| [lcg(&mut seed), lcg(&mut seed)]).collect();
+        let mut x = d.clone();
+        let mut scratch = TriScratch::default();
+        assert!(solve_tridiagonal(&a, &b, &c, &mut x, true, &mut scratch));
+        for i in 0..n {
+            let (prev, next) = (x[(i + n - 1) % n], x[(i + 1) % n]);
+            for k in 0..2 {
+                let row = a[i] * prev[k] + b[i] * x[i][k] + c[i] * next[k];
+                assert!(
+                    (row - d[i][k]).abs() < 1e-12,
+                    "row {i}: {row} vs {}",
+                    d[i][k]
+                );
             }
         }
     }

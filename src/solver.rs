@@ -685,13 +685,42 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// `trial = state + scale · step` (`t` clamped to `[0, 1]`); `false` if a `λ` leaves
     /// `(0, 1]`.
     fn step_to_trial(&mut self, scale: f64) -> bool {
-        let mut ok = true;
+        let n = self.n();
         let (st, tr) = (&self.state, &mut self.trial);
-        for (j, s) in self.step.chunks_exact(B).enumerate() {
-            tr.c[j] = core::array::from_fn(|k| st.c[j][k] + scale * s[k]);
-            tr.lam[j] = st.lam[j] + scale * s[D];
-            tr.t[j] = (st.t[j] + scale * s[D + 1]).clamp(0.0, 1.0);
-            ok &= tr.lam[j] > 0.0 && tr.lam[j] < 1.0 + 1e-15;
+        let (c, lam, t) = (&mut tr.c[..n], &mut tr.lam[..n], &mut tr.t[..n]);
+        if n < split_min() {
+            return Self::step_from(st, 0, &self.step, scale, (c, lam, t));
+        }
+        // Halves (element-wise work: any cut gives the same result).
+        let h = n / 2;
+        let (c0, c1) = c.split_at_mut(h);
+        let (l0, l1) = lam.split_at_mut(h);
+        let (t0, t1) = t.split_at_mut(h);
+        let (s0, s1) = self.step.split_at(h * B);
+        let (ok0, ok1) = join(
+            || Self::step_from(st, 0, s0, scale, (c0, l0, t0)),
+            || Self::step_from(st, h, s1, scale, (c1, l1, t1)),
+        );
+        ok0 && ok1
+    }
+
+    /// [`step_to_trial`](Self::step_to_trial) for the blocks `j0..j0 + t.len()`.
+    #[allow(clippy::type_complexity)]
+    fn step_from(
+        st: &State<D>,
+        j0: usize,
+        step: &[f64],
+        scale: f64,
+        (c, lam, t): (&mut [[f64; D]], &mut [f64], &mut [f64]),
+    ) -> bool {
+        let mut ok = true;
+        let blocks = step.chunks_exact(B).zip(c).zip(lam).zip(t).enumerate();
+        for (i, (((s, c), lam), t)) in blocks {
+            let j = j0 + i;
+            *c = core::array::from_fn(|k| st.c[j][k] + scale * s[k]);
+            *lam = st.lam[j] + scale * s[D];
+            *t = (st.t[j] + scale * s[D + 1]).clamp(0.0, 1.0);
+            ok &= *lam > 0.0 && *lam < 1.0 + 1e-15;
         }
         ok
     }
@@ -971,18 +1000,26 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// Largest scaled residual component.
     fn max_residual(&self) -> f64 {
         // One running maximum per row of the block: independent chains (NaN counts as
-        // infinite).
-        let lanes = self.check.iter().fold([0.0f64; B], |mut m, r| {
-            for (m, &x) in m.iter_mut().zip(r) {
-                *m = if x.is_nan() {
-                    f64::INFINITY
-                } else {
-                    m.max(x.abs())
-                };
-            }
-            m
-        });
-        lanes.into_iter().fold(0.0, f64::max)
+        // infinite). The maximum does not depend on the order: long curves take halves.
+        fn lanes<const B: usize>(check: &[[f64; B]]) -> f64 {
+            let lanes = check.iter().fold([0.0f64; B], |mut m, r| {
+                for (m, &x) in m.iter_mut().zip(r) {
+                    *m = if x.is_nan() {
+                        f64::INFINITY
+                    } else {
+                        m.max(x.abs())
+                    };
+                }
+                m
+            });
+            lanes.into_iter().fold(0.0, f64::max)
+        }
+        if self.check.len() < split_min() {
+            return lanes(&self.check);
+        }
+        let (a, b) = self.check.split_at(self.check.len() / 2);
+        let (a, b) = join(|| lanes(a), || lanes(b));
+        a.max(b)
     }
 
     /// One Newton step with backtracking; `false` if no acceptable step was found.
