@@ -930,7 +930,7 @@ pub(crate) fn solve_tridiagonal<const D: usize>(
 ) -> bool {
     let n = d.len();
     let TriScratch { cp, cp2, u } = scratch;
-    cp.clear();
+    // Every multiplier is written before it is read.
     cp.resize(n, 0.0);
     if !cyclic || n < 3 {
         return thomas(a, b, c, d, cp, None);
@@ -947,7 +947,6 @@ pub(crate) fn solve_tridiagonal<const D: usize>(
     // divisions).
     let ends = Some((b0, bn));
     let ok = if n >= PARALLEL_TRIDIAGONAL {
-        cp2.clear();
         cp2.resize(n, 0.0);
         let (ok_u, ok_d) = crate::parallel::join(
             || thomas(a, b, c, u, cp2, ends),

@@ -21,7 +21,9 @@
 //! bracketed 1-D root solve, then a (cyclic) tridiagonal solve for the `c_j`) give a start;
 //! Newton's method on the whole system then converges quadratically. The Jacobian is
 //! block-banded (block row `j` touches block columns `j-1 ..= j+2`); closed curves wrap
-//! around, which is handled by a bordered solve. Each Newton step costs `O(m)`. A
+//! around, which is handled by a bordered solve. Long curves are cut in two halves and a
+//! border ([`Split`]) whose per-block work and band factorizations run side by side
+//! ([`crate::parallel`]). Each Newton step costs `O(m)`. A
 //! backtracking line search on the scaled residual globalizes it, with classic iterations as
 //! the fallback when a step fails. Open curves are the same system with fixed "ghost"
 //! control points `c_{-1} = p_first`, `c_n = p_last` and `λ_{-1} = 0`, `λ_{n-1} = 1`.
@@ -317,7 +319,7 @@ struct Local<const D: usize> {
 }
 
 /// The linear system of one Newton step: banded for open curves, bordered banded for closed
-/// ones, dense when small.
+/// ones, dense when small, and cut in two halves and a border when long ([`Split`]).
 #[derive(Clone, Debug, Default)]
 struct Linear {
     mode: LinearMode,
