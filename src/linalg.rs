@@ -606,28 +606,7 @@ impl BorderedLu {
             xb[r] -= v * xi[c];
         }
         self.s.solve(xb);
-        /// `x_I -= (A_II⁻¹ A_IB) x_B`, with the border size known at compile time.
-        fn back<const NB: usize>(xi: &mut [f64], ib: &[f64], xb: &[f64]) {
-            let xb: &[f64; NB] = xb.try_into().unwrap();
-            for (x, y) in xi.iter_mut().zip(ib.chunks_exact(NB)) {
-                let mut s = 0.0;
-                for r in 0..NB {
-                    s += y[r] * xb[r];
-                }
-                *x -= s;
-            }
-        }
-        // The border sizes of the κ/εκ systems: two blocks of 3 (2D) or 4 (3D) unknowns.
-        match self.nb {
-            0 => {}
-            6 => back::<6>(xi, &self.ib, xb),
-            8 => back::<8>(xi, &self.ib, xb),
-            nb => {
-                for (x, y) in xi.iter_mut().zip(self.ib.chunks_exact(nb)) {
-                    *x -= y.iter().zip(xb.iter()).map(|(y, b)| y * b).sum::<f64>();
-                }
-            }
-        }
+        subtract_border(xi, &self.ib, xb);
     }
 }
 
@@ -671,16 +650,7 @@ impl SplitPart {
 
     /// `x_P -= (A_PP⁻¹ A_PB) x_B`.
     fn back(&self, x: &mut [f64], xb: &[f64]) {
-        let xb = &xb[self.c0..self.c0 + self.m];
-        match self.m {
-            9 => back_fixed::<9>(x, &self.w, xb),
-            12 => back_fixed::<12>(x, &self.w, xb),
-            m => {
-                for (x, y) in x.iter_mut().zip(self.w.chunks_exact(m)) {
-                    *x -= y.iter().zip(xb).map(|(y, b)| y * b).sum::<f64>();
-                }
-            }
-        }
+        subtract_border(x, &self.w, &xb[self.c0..self.c0 + self.m]);
     }
 }
 
@@ -724,15 +694,33 @@ impl SplitRows<'_> {
     }
 }
 
-/// `x -= W x_B` for a row-major `W` of `M` columns.
-fn back_fixed<const M: usize>(x: &mut [f64], w: &[f64], xb: &[f64]) {
-    let xb: &[f64; M] = xb.try_into().unwrap();
-    for (x, y) in x.iter_mut().zip(w.chunks_exact(M)) {
-        let mut s = 0.0;
-        for r in 0..M {
-            s += y[r] * xb[r];
+/// `x -= W x_B` for a row-major `W` of `x_B.len()` columns: the back substitution of a
+/// bordered solve ([`BorderedLu`], [`SplitLu`]).
+fn subtract_border(x: &mut [f64], w: &[f64], xb: &[f64]) {
+    /// With the border size known at compile time.
+    fn fixed<const M: usize>(x: &mut [f64], w: &[f64], xb: &[f64]) {
+        let xb: &[f64; M] = xb.try_into().unwrap();
+        for (x, y) in x.iter_mut().zip(w.chunks_exact(M)) {
+            let mut s = 0.0;
+            for r in 0..M {
+                s += y[r] * xb[r];
+            }
+            *x -= s;
         }
-        *x -= s;
+    }
+    // The border sizes of the κ/εκ systems: two blocks of 3 (2D) or 4 (3D) unknowns, and a
+    // split system's nine (2D) or twelve (3D) columns per part.
+    match xb.len() {
+        0 => {}
+        6 => fixed::<6>(x, w, xb),
+        8 => fixed::<8>(x, w, xb),
+        9 => fixed::<9>(x, w, xb),
+        12 => fixed::<12>(x, w, xb),
+        m => {
+            for (x, y) in x.iter_mut().zip(w.chunks_exact(m)) {
+                *x -= y.iter().zip(xb).map(|(y, b)| y * b).sum::<f64>();
+            }
+        }
     }
 }
 
@@ -758,7 +746,6 @@ fn back_fixed<const M: usize>(x: &mut [f64], w: &[f64], xb: &[f64]) {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct SplitLu {
     cuts: [usize; 3],
-    n: usize,
     /// Size of a block of unknowns (the tail holds two, the separator two).
     bs: usize,
     parts: [SplitPart; 2],
@@ -780,7 +767,6 @@ impl SplitLu {
         debug_assert!(a <= b && b <= c && c <= n && b - a == 2 * bs);
         debug_assert!(n == c || n - c == 2 * bs);
         self.cuts = [a, b, c];
-        self.n = n;
         self.bs = bs;
         let nb = (b - a) + (n - c);
         let tail = n - c;

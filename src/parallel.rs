@@ -2,8 +2,8 @@
 //!
 //! With the `parallel` feature (on by default) [`join`] runs its two closures on rayon's
 //! thread pool; without it, with a pool of one thread, or where threads are unavailable (as
-//! in WebAssembly) one after the other. The callers split their work the same way in both cases, so the results are
-//! identical.
+//! in WebAssembly) one after the other. The callers split their work the same way in every
+//! case, so the results are identical.
 
 /// Run `a` and `b`, possibly in parallel, and return both results.
 #[inline]

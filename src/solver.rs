@@ -396,6 +396,16 @@ impl Split {
             self.end..self.n,
         ]
     }
+
+    /// `f` on each of the four pieces of work (first half, separator, second half, tail):
+    /// the halves side by side, then the border pieces; the results in the pieces' order.
+    fn each<T: Send, R: Send>(pieces: [T; 4], f: impl Fn(T) -> R + Sync) -> [R; 4] {
+        let [p0, p1, p2, p3] = pieces;
+        let (r0, r2) = join(|| f(p0), || f(p2));
+        let r1 = f(p1);
+        let r3 = f(p3);
+        [r0, r1, r2, r3]
+    }
 }
 
 /// A block's condensed Jacobian: `jl[row][offset][variable]`, the stencil blocks `j - 1 ..=
@@ -445,8 +455,8 @@ impl Linear {
         self.cut = Split::of(closed, n);
         if let Some(split) = self.cut {
             self.mode = LinearMode::Split;
-            let cuts = [split.m * b, (split.m + 2) * b, split.end * b];
-            self.split.reset(cuts, n * b, b, kl, ku);
+            self.split
+                .reset(split.cuts().map(|c| c * b), n * b, b, kl, ku);
             return;
         }
         self.mode = if n * b <= DENSE_ORDER {
@@ -761,12 +771,15 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let [r0, r1, r2, r3] = split4(res, cuts);
         let [c0, c1, c2, c3] = split4(check, cuts);
         let [j0, j1, j2, j3] = split.ranges().map(|r| r.start);
-        let (p0, p2) = join(
-            || Self::residuals_from::<FROZEN>(prob, st, j0, s0, r0, c0, tol),
-            || Self::residuals_from::<FROZEN>(prob, st, j2, s2, r2, c2, tol),
-        );
-        let p1 = Self::residuals_from::<FROZEN>(prob, st, j1, s1, r1, c1, tol);
-        let p3 = Self::residuals_from::<FROZEN>(prob, st, j3, s3, r3, c3, tol);
+        let pieces = [
+            (j0, s0, r0, c0),
+            (j1, s1, r1, c1),
+            (j2, s2, r2, c2),
+            (j3, s3, r3, c3),
+        ];
+        let [p0, p1, p2, p3] = Split::each(pieces, |(j, s, r, c)| {
+            Self::residuals_from::<FROZEN>(prob, st, j, s, r, c, tol)
+        });
         ((p0 + p1) + p2) + p3
     }
 
@@ -1088,28 +1101,22 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             return Self::recover_from(0, &self.res, &self.cond, &self.reduced, &mut self.step);
         };
         let cuts = split.cuts();
-        {
-            let [r0, r1, r2, r3] = split4(&mut self.reduced, cuts.map(|c| c * bb));
-            let (res, cond) = (&self.res, &self.cond);
-            let [j0, j1, j2, j3] = split.ranges();
-            join(
-                || Self::reduce_from(&res[j0.clone()], &cond[j0], r0),
-                || Self::reduce_from(&res[j2.clone()], &cond[j2], r2),
-            );
-            Self::reduce_from(&res[j1.clone()], &cond[j1], r1);
-            Self::reduce_from(&res[j3.clone()], &cond[j3], r3);
-        }
-        self.lin.solve(&mut self.reduced);
-        let [s0, s1, s2, s3] = split4(&mut self.step, cuts.map(|c| c * B));
-        let (res, cond, reduced) = (&self.res, &self.cond, &self.reduced);
+        let (res, cond) = (&self.res, &self.cond);
+        let [r0, r1, r2, r3] = split4(&mut self.reduced, cuts.map(|c| c * bb));
         let [j0, j1, j2, j3] = split.ranges();
-        let (ok0, ok2) = join(
-            || Self::recover_from(j0.start, &res[j0.clone()], &cond[j0], reduced, s0),
-            || Self::recover_from(j2.start, &res[j2.clone()], &cond[j2], reduced, s2),
-        );
-        let ok1 = Self::recover_from(j1.start, &res[j1.clone()], &cond[j1], reduced, s1);
-        let ok3 = Self::recover_from(j3.start, &res[j3.clone()], &cond[j3], reduced, s3);
-        ok0 && ok1 && ok2 && ok3
+        let pieces = [(j0, r0), (j1, r1), (j2, r2), (j3, r3)];
+        Split::each(pieces, |(j, r)| {
+            Self::reduce_from(&res[j.clone()], &cond[j], r)
+        });
+        self.lin.solve(&mut self.reduced);
+        let reduced = &self.reduced;
+        let [s0, s1, s2, s3] = split4(&mut self.step, cuts.map(|c| c * B));
+        let [j0, j1, j2, j3] = split.ranges();
+        let pieces = [(j0, s0), (j1, s1), (j2, s2), (j3, s3)];
+        let ok = Split::each(pieces, |(j, s)| {
+            Self::recover_from(j.start, &res[j.clone()], &cond[j], reduced, s)
+        });
+        ok.iter().all(|&ok| ok)
     }
 
     /// The condensed right-hand side of the blocks of `res` (`reduced` holds theirs).
@@ -1491,12 +1498,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             Some(split) => {
                 let [l0, l1, l2, l3] = split4(&mut self.trial.lam, split.cuts());
                 let [j0, j1, j2, j3] = split.ranges().map(|r| r.start);
-                join(
-                    || Self::ratios_from(prob, st, j0, l0),
-                    || Self::ratios_from(prob, st, j2, l2),
-                );
-                Self::ratios_from(prob, st, j1, l1);
-                Self::ratios_from(prob, st, j3, l3);
+                let pieces = [(j0, l0), (j1, l1), (j2, l2), (j3, l3)];
+                Split::each(pieces, |(j, l)| Self::ratios_from(prob, st, j, l));
             }
         }
         for j in 0..n {
@@ -1520,15 +1523,19 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 let [c0, c1, c2, c3] = split4(c, cuts);
                 let [d0, d1, d2, d3] = split4(&mut self.tri_d, cuts);
                 let [j0, j1, j2, j3] = split.ranges().map(|r| r.start);
-                let ends = &mut self.ends;
-                // The end terms are a function of the basis: the second half keeps its own.
-                let mut ends2 = *ends;
-                join(
-                    || Self::peaks_from(prob, st, j0, ends, start, (t0, a0, b0, c0), d0),
-                    || Self::peaks_from(prob, st, j2, &mut ends2, start, (t2, a2, b2, c2), d2),
-                );
-                Self::peaks_from(prob, st, j1, ends, start, (t1, a1, b1, c1), d1);
-                Self::peaks_from(prob, st, j3, ends, start, (t3, a3, b3, c3), d3);
+                // The end terms are a function of the basis: each piece keeps its own copy
+                // of the cache, and the first half's is kept.
+                let [mut e0, mut e1, mut e2, mut e3] = [self.ends; 4];
+                let pieces = [
+                    (j0, &mut e0, (t0, a0, b0, c0), d0),
+                    (j1, &mut e1, (t1, a1, b1, c1), d1),
+                    (j2, &mut e2, (t2, a2, b2, c2), d2),
+                    (j3, &mut e3, (t3, a3, b3, c3), d3),
+                ];
+                Split::each(pieces, |(j, ends, out, d)| {
+                    Self::peaks_from(prob, st, j, ends, start, out, d)
+                });
+                self.ends = e0;
             }
         }
         core::mem::swap(&mut self.state.t, &mut self.trial.t);
