@@ -4,7 +4,7 @@ use kurbo::{BezPath, CubicBez, ParamCurve, PathSeg, Point, QuadBez};
 
 use crate::basis::{classify, Basis, CubicEk, Extremum, TrigEk};
 use crate::fit::{FitOptions, Fitted};
-use crate::solver::{Outcome, Problem, Settings, Workspace};
+use crate::solver::{Edit, Outcome, Problem, Settings, Workspace};
 use crate::trig::TrigBez;
 use crate::{Error, Point3};
 
@@ -728,6 +728,23 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             self.warm = false;
             return Err(e);
         }
+        // Which points moved: a few close together are re-solved on a window around them.
+        let mut moved = [0; 4];
+        let mut count = 0;
+        for (i, (new, old)) in self.points.iter().zip(&old_points).enumerate() {
+            if new != old {
+                if count == moved.len() {
+                    count += 1;
+                    break;
+                }
+                moved[count] = i;
+                count += 1;
+            }
+        }
+        let edit = moved
+            .get(..count)
+            .and_then(|m| Edit::of(self.prob.closed, self.prob.p.len(), m));
+        self.ws.set_edit(edit, self.frame.size != old_frame.size);
         // Carry the previous unknowns into the new frame, moving each control point with
         // its input point.
         let off = if self.prob.closed { 0 } else { 1 };

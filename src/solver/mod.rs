@@ -32,6 +32,9 @@ use crate::basis::{Basis, SegmentBasis, Stationarity};
 use crate::linalg::{solve_tridiagonal, BandLu, BorderedLu, DenseLu, SplitLu, TriScratch};
 use crate::parallel::join;
 
+mod window;
+pub(crate) use window::Edit;
+
 /// Regularization of the squared doubled triangle area, in normalized coordinates (drawing
 /// size 1): keeps the area differentiable for straight stretches while far below any real
 /// area (a triangle with sides 1e-10 has a squared doubled area ≈ 1e-40).
@@ -566,6 +569,10 @@ pub(crate) struct Workspace<const D: usize, const B: usize> {
     /// The end terms of the last basis the classic loop met (a function of the basis
     /// alone, so they stay valid from one iteration and solve to the next).
     ends: Option<EndTerms>,
+    /// The window of local re-solves ([`window`]) and the edit the next warm re-solve
+    /// follows.
+    window: window::Window<B>,
+    edit: Option<Edit>,
 }
 
 impl<const D: usize, const B: usize> Workspace<D, B> {
@@ -593,6 +600,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         st.t.resize(n, 0.5);
         self.trial.clone_from(&self.state);
         self.lin_state = LinState::Empty;
+        self.window.invalidate();
     }
 
     /// Before a warm re-solve changes the problem: if the stored factors are stale, assemble
@@ -611,6 +619,17 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// Forget the stored factorization (the problem's structure or shapes changed).
     pub(crate) fn invalidate(&mut self) {
         self.lin_state = LinState::Empty;
+        self.window.invalidate();
+    }
+
+    /// The edit the next warm re-solve follows (`None`: points moved all over, or not at
+    /// all); `rescaled` if the normalization changed scale, which the window's linearization
+    /// does not carry over.
+    pub(crate) fn set_edit(&mut self, edit: Option<Edit>, rescaled: bool) {
+        self.edit = edit;
+        if rescaled {
+            self.window.invalidate();
+        }
     }
 
     /// Re-solve from the current state after a small change of the targets: chord steps with
@@ -619,6 +638,15 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     pub(crate) fn solve_warm(&mut self, prob: &Problem<D>, set: &Settings) -> Outcome {
         let n = prob.p.len();
         let mut out = Outcome::default();
+        if let Some(edit) = self.edit.take() {
+            if let Some(local) = self.solve_window(prob, set, edit) {
+                if local.converged {
+                    return local;
+                }
+                out.iterations = local.iterations;
+                out.newton_steps = local.newton_steps;
+            }
+        }
         if self.lin_state == LinState::Assembled && self.fact_scale.len() == n {
             // The Jacobian at the previous solution, assembled by its convergence check.
             self.lin_state = if self.lin.factor() {
@@ -1014,8 +1042,13 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
 
     /// Largest scaled residual component.
     fn max_residual(&self) -> f64 {
-        // One running maximum per row of the block: independent chains (NaN counts as
-        // infinite). The maximum does not depend on the order: long curves take halves.
+        Self::max_of(&self.check)
+    }
+
+    /// Largest component of `check` (NaN counts as infinite).
+    fn max_of(check: &[[f64; B]]) -> f64 {
+        // One running maximum per row of the block: independent chains. The maximum does
+        // not depend on the order: long curves take halves.
         fn lanes<const B: usize>(check: &[[f64; B]]) -> f64 {
             let lanes = check.iter().fold([0.0f64; B], |mut m, r| {
                 for (m, &x) in m.iter_mut().zip(r) {
@@ -1029,10 +1062,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             });
             lanes.into_iter().fold(0.0, f64::max)
         }
-        if self.check.len() < split_min() {
-            return lanes(&self.check);
+        if check.len() < split_min() {
+            return lanes(check);
         }
-        let (a, b) = self.check.split_at(self.check.len() / 2);
+        let (a, b) = check.split_at(check.len() / 2);
         let (a, b) = join(|| lanes(a), || lanes(b));
         a.max(b)
     }
@@ -1302,16 +1335,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             let loc = Self::local(prob, st, j);
             let mut scale = [1.0; 2];
             let mut g2 = 0.0;
-            let mut jl = [[[0.0; B]; 4]; B];
-            let mut sink = |row: usize, col: Var, v: f64| {
-                let (o, k) = match col {
-                    Var::C(off, k) => ((off + 1) as usize, k),
-                    Var::L(off) => ((off + 1) as usize, D),
-                    Var::T => (1, D + 1),
-                };
-                jl[row][o][k] += v;
-            };
-            let r = Self::eval_block::<true, false>(prob, j, &loc, &mut scale, &mut g2, &mut sink);
+            let (r, mut jl) = Self::block_jacobian(prob, j, &loc, &mut scale, &mut g2);
             let columns = Columns::new::<D, B>(prob.closed, n, j, B - 1);
             *cond = condense::<D, B>(&mut jl, &columns);
             add(j * (B - 1), &jl, &columns);
@@ -1323,6 +1347,30 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             *res = r;
         }
         phi
+    }
+
+    /// The scaled residual of block `j` (row scales computed into `scale`, the relative |κ|
+    /// mismatch into `g2`) and its Jacobian by stencil block and variable, `t_j` not yet
+    /// eliminated.
+    #[inline(always)]
+    fn block_jacobian(
+        prob: &Problem<D>,
+        j: usize,
+        loc: &Local<D>,
+        scale: &mut [f64; 2],
+        g2: &mut f64,
+    ) -> ([f64; B], BlockJacobian<B>) {
+        let mut jl = [[[0.0; B]; 4]; B];
+        let mut sink = |row: usize, col: Var, v: f64| {
+            let (o, k) = match col {
+                Var::C(off, k) => ((off + 1) as usize, k),
+                Var::L(off) => ((off + 1) as usize, D),
+                Var::T => (1, D + 1),
+            };
+            jl[row][o][k] += v;
+        };
+        let r = Self::eval_block::<true, false>(prob, j, loc, scale, g2, &mut sink);
+        (r, jl)
     }
 
     /// The scaled residual of block `j`; with `FROZEN`, the row scales in `scale` are used

@@ -1,0 +1,682 @@
+//! Warm re-solves after a local edit: Newton's method on a window of blocks around the moved
+//! points, with the rest of the curve following linearly.
+//!
+//! Moving one point changes the solution mostly nearby: on a jagged 50-point loop the
+//! control points move about 7× less with every block of distance from the moved one. So the
+//! unknowns are split into the window `W` (the moved blocks and [`HALF`] blocks on either
+//! side) and the outer blocks `O`. The outer rows are linearized at the solution the edit
+//! started from (their residual is zero there): `J_OO δ_O + J_OW δ_W = 0`, so the outer
+//! unknowns follow the window as `δ_O = -X δ_W` with `X = J_OO⁻¹ J_OW`. Only the outer rows
+//! next to the window touch window unknowns (its first two and last two blocks), so `X` has
+//! `4 (D + 1)` columns; it is computed once per window (one band factorization of the outer
+//! blocks and one pass over it for all columns) and kept while the edits stay inside.
+//!
+//! The window's own rows are solved by Newton's method with the outer unknowns eliminated:
+//! the Jacobian is `J_WW - J_WO X`, the window's band plus terms that couple its two ends
+//! through the outer blocks (a bordered system of the window's size, like a closed curve's).
+//! Each step costs `O(window)`, whatever the curve's length. At the end one `O(n)` pass moves
+//! the outer blocks (`c`, `λ` by `X`, `t` from their peak rows) and measures the residual of
+//! the whole curve, which decides convergence: where the linearization is not accurate
+//! enough, the global chord and Newton steps go on from there.
+
+use super::{condense, scatter, Columns, Condensed, Outcome, Problem, Settings, Workspace};
+use crate::linalg::BandLu;
+
+/// Blocks of the window on either side of the moved ones: at the window's edge the solution
+/// moves about `7^-7 ≈ 1e-6` times as much as at the moved point (jagged loops), so the
+/// outer blocks' linearization errs by about the square of that.
+const HALF: usize = 7;
+/// Most consecutive blocks an edit may move for a window re-solve.
+const MAX_MOVED: usize = 3;
+/// Curves with fewer blocks are re-solved globally (a window would cover most of them).
+pub(crate) const WINDOW_MIN_BLOCKS: usize = 32;
+/// A window step no larger than this (in units of the drawing size) is followed by a
+/// measurement of the residual alone: it is within the tolerance after such a step where
+/// Newton converges quadratically.
+const SMALL_STEP: f64 = 1e-6;
+/// Newton steps on the window before the global steps take over.
+const MAX_STEPS: usize = 8;
+
+/// The blocks an edit moved: `count` consecutive blocks from `first` (cyclically for closed
+/// curves).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Edit {
+    first: usize,
+    count: usize,
+}
+
+impl Edit {
+    /// The edit that moved the input points `moved` (indices into the input points, in
+    /// increasing order) of a curve with `n` unknown blocks, if they lie close together.
+    /// Open curves: point `i` is the peak of block `i - 1`; the end points move the first
+    /// and last blocks.
+    pub(crate) fn of(closed: bool, n: usize, moved: &[usize]) -> Option<Edit> {
+        if moved.is_empty() || moved.len() > MAX_MOVED || n == 0 {
+            return None;
+        }
+        let block = |i: usize| {
+            if closed {
+                i
+            } else {
+                i.saturating_sub(1).min(n - 1)
+            }
+        };
+        let mut blocks = [0; MAX_MOVED];
+        for (b, &i) in blocks.iter_mut().zip(moved) {
+            *b = block(i);
+        }
+        let blocks = &blocks[..moved.len()];
+        let (first, last) = (blocks[0], blocks[blocks.len() - 1]);
+        if !closed {
+            let count = last - first + 1;
+            return (count <= MAX_MOVED).then_some(Edit { first, count });
+        }
+        // The shortest arc covering the blocks starts after the largest cyclic gap.
+        let mut best = (n - last + first, first);
+        for pair in blocks.windows(2) {
+            if pair[1] - pair[0] > best.0 {
+                best = (pair[1] - pair[0], pair[1]);
+            }
+        }
+        let count = n - best.0 + 1;
+        (count <= MAX_MOVED).then_some(Edit {
+            first: best.1,
+            count,
+        })
+    }
+}
+
+/// Where a block sits in the split of [`Window`].
+#[derive(Clone, Copy, Debug)]
+enum Slot {
+    /// Position within the window.
+    Window(usize),
+    /// Position among the outer blocks (the order of their band).
+    Outer(usize),
+}
+
+/// The window of a local re-solve and the outer blocks' linear response (see the module
+/// documentation).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Window<const B: usize> {
+    /// Whether the fields below describe the current problem's structure and a recent
+    /// solution.
+    valid: bool,
+    n: usize,
+    closed: bool,
+    /// The window: `len` blocks from `a` (cyclically for closed curves).
+    a: usize,
+    len: usize,
+    slot: Vec<Slot>,
+    /// The outer blocks, in band order (closed: from the window's end around to its start).
+    outer: Vec<usize>,
+    /// Outer blocks within two blocks of the window: the window's rows read them.
+    adj: Vec<usize>,
+    /// `X = J_OO⁻¹ J_OW`, row-major (`(D + 1)` rows per outer block, [`Window::nq`] columns).
+    x: Vec<f64>,
+    /// The outer blocks' peak rows (recovering their `δt`).
+    ocond: Vec<Condensed<B>>,
+    band: BandLu,
+    /// The window's Newton system (band storage: the terms that couple its two ends
+    /// through the outer blocks fall outside the band and are left out, see
+    /// [`Workspace::solve_window`]).
+    lin: BandLu,
+    /// Window rows' entries in outer columns: `(row, outer unknown, value)`.
+    jwo: Vec<(usize, usize, f64)>,
+    wres: Vec<[f64; B]>,
+    wcond: Vec<Condensed<B>>,
+    /// The window's right-hand side, then its step.
+    rhs: Vec<f64>,
+    /// The condensed step in global numbering, where it is known.
+    delta: Vec<f64>,
+    /// The total change of the window unknowns that `X` reads.
+    acc: Vec<f64>,
+    /// The condensed unknowns of the window and adjacent blocks at the start of a re-solve.
+    base: Vec<f64>,
+}
+
+impl<const B: usize> Window<B> {
+    /// Columns of `X`: the unknowns of the window's first two and last two blocks.
+    const fn nq() -> usize {
+        4 * (B - 1)
+    }
+
+    /// The window-local unknown of column `q` of `X`.
+    fn xcol(&self, q: usize) -> usize {
+        xcol::<B>(self.len, q)
+    }
+
+    /// The block at window position `i`.
+    fn block(&self, i: usize) -> usize {
+        let j = self.a + i;
+        if j >= self.n {
+            j - self.n
+        } else {
+            j
+        }
+    }
+
+    /// Forget the window (the problem's structure changed, or its linearization failed).
+    pub(crate) fn invalidate(&mut self) {
+        self.valid = false;
+    }
+}
+
+/// The window-local unknown of column `q` of `X` in a window of `len` blocks.
+fn xcol<const B: usize>(len: usize, q: usize) -> usize {
+    let bb = B - 1;
+    if q < 2 * bb {
+        q
+    } else {
+        q + (len - 4) * bb
+    }
+}
+
+/// The column of `X` of window-local unknown `k` of window block `w` (of `len`), if any.
+fn xq<const B: usize>(len: usize, w: usize, k: usize) -> Option<usize> {
+    let bb = B - 1;
+    if w < 2 {
+        Some(w * bb + k)
+    } else if w + 2 >= len {
+        Some((w + 4 - len) * bb + k)
+    } else {
+        None
+    }
+}
+
+/// The condensed unknown `k` of block `j` (`c` components, then `λ`).
+fn unknown<const D: usize>(st: &super::State<D>, j: usize, k: usize) -> f64 {
+    if k < D {
+        st.c[j][k]
+    } else {
+        st.lam[j]
+    }
+}
+
+/// Add `v` to the condensed unknown `k` of block `j`.
+fn shift<const D: usize>(st: &mut super::State<D>, j: usize, k: usize, v: f64) {
+    if k < D {
+        st.c[j][k] += v;
+    } else {
+        st.lam[j] += v;
+    }
+}
+
+impl<const D: usize, const B: usize> Workspace<D, B> {
+    /// Split the blocks into the window (`len` blocks from `a`) and the outer blocks, and
+    /// factor the outer rows' Jacobian at the current state for `X`. `false` if singular.
+    fn build_window(&mut self, prob: &Problem<D>, a: usize, len: usize) -> bool {
+        let n = prob.p.len();
+        let bb = B - 1;
+        let nq = Window::<B>::nq();
+        let Workspace {
+            state, window: w, ..
+        } = self;
+        w.valid = false;
+        (w.n, w.closed, w.a, w.len) = (n, prob.closed, a, len);
+        w.slot.clear();
+        w.slot.resize(n, Slot::Outer(0));
+        w.outer.clear();
+        if prob.closed {
+            w.outer.extend((a + len..a + n).map(|j| j % n));
+        } else {
+            w.outer.extend((0..a).chain(a + len..n));
+        }
+        for i in 0..len {
+            let j = w.block(i);
+            w.slot[j] = Slot::Window(i);
+        }
+        for (p, &j) in w.outer.iter().enumerate() {
+            w.slot[j] = Slot::Outer(p);
+        }
+        w.adj.clear();
+        for d in 1..=2 {
+            let (before, after) = if prob.closed {
+                (Some((a + n - d) % n), Some((a + len - 1 + d) % n))
+            } else {
+                (a.checked_sub(d), Some(a + len - 1 + d).filter(|&j| j < n))
+            };
+            for j in [before, after].into_iter().flatten() {
+                if matches!(w.slot[j], Slot::Outer(_)) && !w.adj.contains(&j) {
+                    w.adj.push(j);
+                }
+            }
+        }
+        let no = w.outer.len();
+        w.band.reset(no * bb, 2 * bb - 1, 2 * bb - 1);
+        w.x.clear();
+        w.x.resize(no * bb * nq, 0.0);
+        w.ocond.clear();
+        for p in 0..no {
+            let j = w.outer[p];
+            let loc = Self::local(prob, state, j);
+            let (mut scale, mut g2) = ([1.0; 2], 0.0);
+            let (_, mut jl) = Self::block_jacobian(prob, j, &loc, &mut scale, &mut g2);
+            let columns = Columns::new::<D, B>(prob.closed, n, j, bb);
+            w.ocond.push(condense::<D, B>(&mut jl, &columns));
+            let (slot, band, x) = (&w.slot, &mut w.band, &mut w.x);
+            let mut ok = true;
+            scatter(p * bb, bb, &jl, &columns, |row, col, v| {
+                match slot[col / bb] {
+                    Slot::Outer(q) => band.add(row, q * bb + col % bb, v),
+                    Slot::Window(i) => match xq::<B>(len, i, col % bb) {
+                        Some(q) => x[row * nq + q] += v,
+                        None => ok = false,
+                    },
+                }
+            });
+            if !ok {
+                return false;
+            }
+        }
+        if !w.band.factor() {
+            return false;
+        }
+        w.band.solve_many(&mut w.x, nq);
+        w.valid = w.x.iter().all(|v| v.is_finite());
+        w.valid
+    }
+
+    /// Re-solve after `edit` by Newton's method on a window around it (see the module
+    /// documentation). `None` if the curve is too short, the edit too wide, or the window's
+    /// Newton steps failed (the state is then as it was); otherwise the outcome of the whole
+    /// curve's convergence test, with the state moved.
+    pub(super) fn solve_window(
+        &mut self,
+        prob: &Problem<D>,
+        set: &Settings,
+        edit: Edit,
+    ) -> Option<Outcome> {
+        let n = prob.p.len();
+        let bb = B - 1;
+        let nq = Window::<B>::nq();
+        if n < WINDOW_MIN_BLOCKS || edit.count > MAX_MOVED || set.max_iterations == 0 {
+            return None;
+        }
+        let (a, len) = if prob.closed {
+            ((edit.first + n - HALF) % n, edit.count + 2 * HALF)
+        } else {
+            let a = edit.first.saturating_sub(HALF);
+            (a, (edit.first + edit.count + HALF).min(n) - a)
+        };
+        let w = &self.window;
+        let fits = w.valid && w.n == n && w.closed == prob.closed && w.a == a && w.len == len;
+        if !(fits || self.build_window(prob, a, len)) {
+            return None;
+        }
+        self.size_buffers(n);
+        self.trial.clone_from(&self.state);
+        let tol = set.tolerance;
+        let Workspace {
+            state,
+            window: w,
+            trial_scale,
+            trial_res,
+            trial_check,
+            ..
+        } = self;
+        // The start: the window's and the adjacent blocks' unknowns.
+        w.base.clear();
+        for i in 0..len {
+            let j = w.block(i);
+            w.base.extend((0..bb).map(|k| unknown(state, j, k)));
+        }
+        for &j in &w.adj {
+            w.base.extend((0..bb).map(|k| unknown(state, j, k)));
+        }
+        w.acc.clear();
+        w.acc.resize(nq, 0.0);
+        w.delta.clear();
+        w.delta.resize(n * bb, 0.0);
+        w.wres.resize(len, [0.0; B]);
+        w.wcond.resize(len, Condensed::default());
+        w.rhs.resize(len * bb, 0.0);
+        let mut steps = 0;
+        let (kl, ku) = (2 * bb - 1, 2 * bb - 1);
+        // After a small step (quadratic convergence), the residual alone is measured first:
+        // it is likely within the tolerance, and then the Jacobian is not needed.
+        let mut measure_first = false;
+        let ok = loop {
+            if measure_first {
+                let mut worst = 0.0f64;
+                let ranges = if a + len <= n {
+                    [a..a + len, 0..0]
+                } else {
+                    [a..n, 0..a + len - n]
+                };
+                for r in ranges {
+                    let (s, res, check) = (
+                        &mut trial_scale[r.clone()],
+                        &mut trial_res[r.clone()],
+                        &mut trial_check[r.clone()],
+                    );
+                    Self::residuals_from::<false>(prob, state, r.start, s, res, check, tol);
+                    worst = worst.max(Self::max_of(check));
+                }
+                if worst <= tol {
+                    break true;
+                }
+            }
+            // The window's residual and Jacobian at the current state.
+            w.lin.reset(len * bb, 2 * bb - 1, 2 * bb - 1);
+            w.jwo.clear();
+            let mut worst = 0.0f64;
+            for i in 0..len {
+                let j = w.block(i);
+                let loc = Self::local(prob, state, j);
+                let (mut scale, mut g2) = ([1.0; 2], 0.0);
+                let (r, mut jl) = Self::block_jacobian(prob, j, &loc, &mut scale, &mut g2);
+                for v in Self::check_row(r, g2, &loc, tol) {
+                    worst = if v.is_nan() {
+                        f64::INFINITY
+                    } else {
+                        worst.max(v.abs())
+                    };
+                }
+                let columns = Columns::new::<D, B>(prob.closed, n, j, bb);
+                let cond = condense::<D, B>(&mut jl, &columns);
+                let (slot, lin, jwo) = (&w.slot, &mut w.lin, &mut w.jwo);
+                scatter(i * bb, bb, &jl, &columns, |row, col, v| {
+                    match slot[col / bb] {
+                        Slot::Window(c) => lin.add(row, c * bb + col % bb, v),
+                        Slot::Outer(p) => jwo.push((row, p * bb + col % bb, v)),
+                    }
+                });
+                for k in 0..bb {
+                    w.rhs[i * bb + k] = -(r[k] - cond.m[k] * r[D + 1]);
+                }
+                w.wres[i] = r;
+                w.wcond[i] = cond;
+            }
+            if worst <= tol {
+                break true;
+            }
+            if steps >= MAX_STEPS || steps >= set.max_iterations || !worst.is_finite() {
+                break false;
+            }
+            steps += 1;
+            // Eliminate the outer unknowns: J_WW - J_WO X.
+            for &(row, o, v) in &w.jwo {
+                for q in 0..nq {
+                    let xv = w.x[o * nq + q];
+                    let col = w.xcol(q);
+                    // Closed curves: the outer blocks also couple the window's two ends, by
+                    // terms that fall off geometrically with the outer blocks' count (about
+                    // 7^-17 on jagged loops). Left out, they make the step inexact by that
+                    // much; the residual, which decides convergence, is exact.
+                    if xv != 0.0 && col + kl >= row && col <= row + ku {
+                        w.lin.add(row, col, -v * xv);
+                    }
+                }
+            }
+            if !w.lin.factor() {
+                break false;
+            }
+            w.lin.solve(&mut w.rhs);
+            // The step in global numbering: the window's, and the adjacent outer blocks'.
+            for i in 0..len {
+                let j = w.block(i);
+                w.delta[j * bb..(j + 1) * bb].copy_from_slice(&w.rhs[i * bb..(i + 1) * bb]);
+            }
+            for q in 0..nq {
+                w.acc[q] += w.rhs[w.xcol(q)];
+            }
+            let mut finite = true;
+            for (ai, &j) in w.adj.iter().enumerate() {
+                let Slot::Outer(p) = w.slot[j] else {
+                    unreachable!("adjacent blocks are outer ones")
+                };
+                for k in 0..bb {
+                    let row = &w.x[(p * bb + k) * nq..(p * bb + k + 1) * nq];
+                    let dx: f64 = row.iter().zip(&w.acc).map(|(x, s)| x * s).sum();
+                    let now = w.base[(len + ai) * bb + k] - dx;
+                    w.delta[j * bb + k] = now - unknown(state, j, k);
+                    if k < D {
+                        state.c[j][k] = now;
+                    } else {
+                        state.lam[j] = now;
+                    }
+                }
+            }
+            for i in 0..len {
+                let j = w.block(i);
+                let (r, cond) = (&w.wres[i], &w.wcond[i]);
+                let dt = (-r[D + 1] - cond.row_dot(&w.delta)) / cond.p;
+                for k in 0..bb {
+                    shift(state, j, k, w.rhs[i * bb + k]);
+                }
+                state.t[j] = (state.t[j] + dt).clamp(0.0, 1.0);
+                finite &= dt.is_finite() && state.lam[j] > 0.0 && state.lam[j] < 1.0 + 1e-15;
+            }
+            for &j in &w.adj {
+                finite &= state.lam[j] > 0.0 && state.lam[j] < 1.0 + 1e-15;
+            }
+            if !finite {
+                break false;
+            }
+            measure_first = w.rhs.iter().all(|d| d.abs() <= SMALL_STEP);
+        };
+        if !ok {
+            w.valid = false;
+            self.state.clone_from(&self.trial);
+            return None;
+        }
+        // The outer blocks follow: `δ_O = -X δ_W`, then `δt` from their peak rows.
+        for (ai, &j) in w.adj.iter().enumerate() {
+            for k in 0..bb {
+                let v = w.base[(len + ai) * bb + k];
+                if k < D {
+                    state.c[j][k] = v;
+                } else {
+                    state.lam[j] = v;
+                }
+            }
+        }
+        for i in 0..len {
+            let j = w.block(i);
+            for k in 0..bb {
+                w.delta[j * bb + k] = unknown(state, j, k) - w.base[i * bb + k];
+            }
+        }
+        for (p, &j) in w.outer.iter().enumerate() {
+            for k in 0..bb {
+                let row = &w.x[(p * bb + k) * nq..(p * bb + k + 1) * nq];
+                let dx: f64 = row.iter().zip(&w.acc).map(|(x, s)| x * s).sum();
+                w.delta[j * bb + k] = -dx;
+                shift(state, j, k, -dx);
+            }
+        }
+        for (p, &j) in w.outer.iter().enumerate() {
+            let cond = &w.ocond[p];
+            let dt = -cond.row_dot(&w.delta) / cond.p;
+            state.t[j] = (state.t[j] + dt).clamp(0.0, 1.0);
+        }
+        // The whole curve's convergence test.
+        Self::residuals::<false>(
+            prob,
+            &self.state,
+            &mut self.trial_scale,
+            &mut self.trial_res,
+            &mut self.trial_check,
+            tol,
+        );
+        core::mem::swap(&mut self.res, &mut self.trial_res);
+        core::mem::swap(&mut self.check, &mut self.trial_check);
+        core::mem::swap(&mut self.scale, &mut self.trial_scale);
+        let residual = self.max_residual();
+        let converged = residual <= tol;
+        if !converged {
+            // Linearized too far from where `X` was computed: next time, anew.
+            self.window.valid = false;
+        }
+        Some(Outcome {
+            iterations: steps,
+            newton_steps: steps,
+            converged,
+            residual,
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::basis::{Basis, CubicEk};
+
+    #[test]
+    fn edits_cover_the_moved_blocks() {
+        assert_eq!(Edit::of(true, 40, &[7]), Some(Edit { first: 7, count: 1 }));
+        // Around the wrap of a closed curve.
+        assert_eq!(
+            Edit::of(true, 40, &[0, 39]),
+            Some(Edit {
+                first: 39,
+                count: 2
+            })
+        );
+        assert_eq!(
+            Edit::of(true, 40, &[0, 1, 39]),
+            Some(Edit {
+                first: 39,
+                count: 3
+            })
+        );
+        assert_eq!(
+            Edit::of(true, 40, &[3, 5]),
+            Some(Edit { first: 3, count: 3 })
+        );
+        // Open curves: point i peaks on block i - 1; the end points move the end blocks.
+        assert_eq!(Edit::of(false, 40, &[0]), Some(Edit { first: 0, count: 1 }));
+        assert_eq!(
+            Edit::of(false, 40, &[41]),
+            Some(Edit {
+                first: 39,
+                count: 1
+            })
+        );
+        assert_eq!(
+            Edit::of(false, 40, &[5, 6]),
+            Some(Edit { first: 4, count: 2 })
+        );
+        // Too far apart, too many, or none.
+        assert_eq!(Edit::of(true, 40, &[3, 20]), None);
+        assert_eq!(Edit::of(false, 40, &[0, 41]), None);
+        assert_eq!(Edit::of(true, 40, &[1, 2, 3, 4]), None);
+        assert_eq!(Edit::of(true, 40, &[]), None);
+    }
+
+    /// A jagged loop (radii alternating 0.5 and 0.45; 3D: with a wave in z) in normalized
+    /// coordinates.
+    fn jagged<const D: usize>(n: usize) -> Vec<[f64; D]> {
+        (0..n)
+            .map(|i| {
+                let th = i as f64 / n as f64 * std::f64::consts::TAU;
+                let r = if i % 2 == 0 { 0.5 } else { 0.45 };
+                core::array::from_fn(|k| match k {
+                    0 => r * th.cos(),
+                    1 => r * th.sin(),
+                    _ => 0.1 * (3.0 * th).sin(),
+                })
+            })
+            .collect()
+    }
+
+    fn cold<const D: usize, const B: usize>(prob: &Problem<D>, set: &Settings) -> Workspace<D, B> {
+        let mut ws = Workspace::<D, B>::default();
+        let mut scratch = Problem {
+            closed: prob.closed,
+            p: vec![],
+            ghost: [[0.0; D]; 2],
+            basis: vec![],
+        };
+        assert!(ws.solve_cold(prob, set, &mut scratch).converged);
+        ws
+    }
+
+    /// Drag the input points `moved` over three frames, re-solving each warm after the edit
+    /// (as `SolverN::resolve` does): the first frame converges on its window alone, every
+    /// frame in a few steps, and each lands on the cold solution of the moved points.
+    fn check<const D: usize, const B: usize>(
+        closed: bool,
+        basis: Basis,
+        n: usize,
+        moved: &[usize],
+    ) {
+        let p = jagged::<D>(n);
+        let ghost = [p[0], p[n - 1]];
+        let p = if closed { p } else { p[1..n - 1].to_vec() };
+        let blocks = p.len();
+        let mut prob = Problem {
+            closed,
+            p,
+            ghost,
+            basis: vec![basis; blocks],
+        };
+        let set = Settings {
+            tolerance: 1e-12,
+            max_iterations: 200,
+            newton_chords: true,
+        };
+        let mut ws = cold::<D, B>(&prob, &set);
+        let edit = Edit::of(closed, blocks, moved).unwrap();
+        for (frame, step) in [0.004, 0.006, -0.008].into_iter().enumerate() {
+            ws.refresh_jacobian(&prob, set.tolerance);
+            for &i in moved {
+                let d: [f64; D] = core::array::from_fn(|k| step * [1.0, -0.6, 0.3][k]);
+                // The control point moves with its input point.
+                let block = if closed { Some(i) } else { i.checked_sub(1) };
+                match block {
+                    Some(j) if j < blocks => {
+                        prob.p[j] = core::array::from_fn(|k| prob.p[j][k] + d[k]);
+                        ws.state.c[j] = core::array::from_fn(|k| ws.state.c[j][k] + d[k]);
+                    }
+                    _ => {
+                        let g = usize::from(i != 0);
+                        prob.ghost[g] = core::array::from_fn(|k| prob.ghost[g][k] + d[k]);
+                    }
+                }
+            }
+            let out = if frame == 0 {
+                let out = ws.solve_window(&prob, &set, edit);
+                out.unwrap_or_else(|| panic!("{closed} {moved:?}: no window"))
+            } else {
+                ws.set_edit(Some(edit), false);
+                ws.solve_warm(&prob, &set)
+            };
+            assert!(
+                out.converged && out.iterations <= 6,
+                "{closed} {moved:?} frame {frame}: {out:?}"
+            );
+            let reference = cold::<D, B>(&prob, &set);
+            let (a, b) = (&ws.state, &reference.state);
+            for j in 0..blocks {
+                let dc = (0..D)
+                    .map(|k| (a.c[j][k] - b.c[j][k]).abs())
+                    .fold(0.0, f64::max);
+                assert!(
+                    dc < 1e-10,
+                    "{closed} {moved:?} frame {frame} block {j}: {dc}"
+                );
+                assert!((a.lam[j] - b.lam[j]).abs() < 1e-9, "λ {j}");
+                assert!((a.t[j] - b.t[j]).abs() < 1e-8, "t {j}");
+            }
+        }
+    }
+
+    #[test]
+    fn window_resolves_match_cold_solves() {
+        let kappa = Basis::QUADRATIC;
+        let ek = Basis::Cubic(CubicEk::new(0.85));
+        for basis in [kappa, ek] {
+            check::<2, 4>(true, basis, 40, &[20]);
+            check::<2, 4>(true, basis, 40, &[0]);
+            check::<2, 4>(true, basis, 40, &[0, 38, 39]);
+            check::<2, 4>(false, basis, 42, &[21]);
+            check::<2, 4>(false, basis, 42, &[2, 3]);
+            check::<2, 4>(false, basis, 42, &[0]);
+            check::<2, 4>(false, basis, 42, &[41]);
+        }
+        check::<3, 5>(true, kappa, 36, &[5]);
+        check::<3, 5>(false, kappa, 38, &[30]);
+    }
+}
