@@ -99,6 +99,13 @@ const ROOT_ITERATIONS: usize = 60;
 /// at the rate of the step-to-bound factor.
 const T_LANDING: f64 = 1e-9;
 
+/// Whether a joint ratio is usable after a step: inside `(0, 1]` (1 up to rounding, for the
+/// fixed last ratio of open curves).
+#[inline]
+fn lambda_valid(lam: f64) -> bool {
+    lam > 0.0 && lam < 1.0 + 1e-15
+}
+
 #[inline]
 fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
     core::array::from_fn(|k| a[k] - b[k])
@@ -760,7 +767,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             *c = core::array::from_fn(|k| st.c[j][k] + scale * s[k]);
             *lam = st.lam[j] + scale * s[D];
             *t = (st.t[j] + scale * s[D + 1]).clamp(0.0, 1.0);
-            ok &= *lam > 0.0 && *lam < 1.0 + 1e-15;
+            ok &= lambda_valid(*lam);
         }
         ok
     }

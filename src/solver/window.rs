@@ -19,7 +19,9 @@
 //! the whole curve, which decides convergence: where the linearization is not accurate
 //! enough, the global chord and Newton steps go on from there.
 
-use super::{condense, scatter, Columns, Condensed, Outcome, Problem, Settings, Workspace};
+use super::{
+    condense, lambda_valid, scatter, Columns, Condensed, Outcome, Problem, Settings, Workspace,
+};
 use crate::linalg::BandLu;
 
 /// Blocks of the window on either side of the moved ones: at the window's edge the solution
@@ -146,6 +148,14 @@ impl<const B: usize> Window<B> {
         xcol::<B>(self.len, q)
     }
 
+    /// `(X acc)` at the condensed unknown `k` of outer block `p`: how far the outer
+    /// unknown moves back for the window's total change so far.
+    fn response(&self, p: usize, k: usize) -> f64 {
+        let nq = Self::nq();
+        let row = &self.x[(p * (B - 1) + k) * nq..][..nq];
+        row.iter().zip(&self.acc).map(|(x, s)| x * s).sum()
+    }
+
     /// The block at window position `i`.
     fn block(&self, i: usize) -> usize {
         let j = self.a + i;
@@ -193,12 +203,12 @@ fn unknown<const D: usize>(st: &super::State<D>, j: usize, k: usize) -> f64 {
     }
 }
 
-/// Add `v` to the condensed unknown `k` of block `j`.
-fn shift<const D: usize>(st: &mut super::State<D>, j: usize, k: usize, v: f64) {
+/// The condensed unknown `k` of block `j`, to write.
+fn unknown_mut<const D: usize>(st: &mut super::State<D>, j: usize, k: usize) -> &mut f64 {
     if k < D {
-        st.c[j][k] += v;
+        &mut st.c[j][k]
     } else {
-        st.lam[j] += v;
+        &mut st.lam[j]
     }
 }
 
@@ -427,15 +437,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     unreachable!("adjacent blocks are outer ones")
                 };
                 for k in 0..bb {
-                    let row = &w.x[(p * bb + k) * nq..(p * bb + k + 1) * nq];
-                    let dx: f64 = row.iter().zip(&w.acc).map(|(x, s)| x * s).sum();
-                    let now = w.base[(len + ai) * bb + k] - dx;
-                    w.delta[j * bb + k] = now - unknown(state, j, k);
-                    if k < D {
-                        state.c[j][k] = now;
-                    } else {
-                        state.lam[j] = now;
-                    }
+                    let now = w.base[(len + ai) * bb + k] - w.response(p, k);
+                    let x = unknown_mut(state, j, k);
+                    w.delta[j * bb + k] = now - *x;
+                    *x = now;
                 }
             }
             for i in 0..len {
@@ -443,13 +448,13 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 let (r, cond) = (&w.wres[i], &w.wcond[i]);
                 let dt = (-r[D + 1] - cond.row_dot(&w.delta)) / cond.p;
                 for k in 0..bb {
-                    shift(state, j, k, w.rhs[i * bb + k]);
+                    *unknown_mut(state, j, k) += w.rhs[i * bb + k];
                 }
                 state.t[j] = (state.t[j] + dt).clamp(0.0, 1.0);
-                finite &= dt.is_finite() && state.lam[j] > 0.0 && state.lam[j] < 1.0 + 1e-15;
+                finite &= dt.is_finite() && lambda_valid(state.lam[j]);
             }
             for &j in &w.adj {
-                finite &= state.lam[j] > 0.0 && state.lam[j] < 1.0 + 1e-15;
+                finite &= lambda_valid(state.lam[j]);
             }
             if !finite {
                 break false;
@@ -464,12 +469,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         // The outer blocks follow: `δ_O = -X δ_W`, then `δt` from their peak rows.
         for (ai, &j) in w.adj.iter().enumerate() {
             for k in 0..bb {
-                let v = w.base[(len + ai) * bb + k];
-                if k < D {
-                    state.c[j][k] = v;
-                } else {
-                    state.lam[j] = v;
-                }
+                *unknown_mut(state, j, k) = w.base[(len + ai) * bb + k];
             }
         }
         for i in 0..len {
@@ -480,10 +480,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         for (p, &j) in w.outer.iter().enumerate() {
             for k in 0..bb {
-                let row = &w.x[(p * bb + k) * nq..(p * bb + k + 1) * nq];
-                let dx: f64 = row.iter().zip(&w.acc).map(|(x, s)| x * s).sum();
+                let dx = w.response(p, k);
                 w.delta[j * bb + k] = -dx;
-                shift(state, j, k, -dx);
+                *unknown_mut(state, j, k) -= dx;
             }
         }
         for (p, &j) in w.outer.iter().enumerate() {
