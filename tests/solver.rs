@@ -782,7 +782,7 @@ fn open_points_doubling_back_along_a_line_are_collinear() {
 
 /// Long curves (hundreds of segments) follow Newton steps with chord steps: the result
 /// must satisfy every property, use fewer Newton steps than iterations, and a warm re-solve
-/// afterwards (which re-assembles the Jacobian at the solution) must agree with a cold one.
+/// afterwards must agree with a cold one.
 #[test]
 fn long_curves_use_chord_steps_and_stay_exact() {
     let n = 400;
@@ -816,6 +816,9 @@ fn long_curves_use_chord_steps_and_stay_exact() {
                 assert!(dist(w.q[k], c.q[k]) < 1e-9 * 200.0);
             }
         }
-        assert!(warm.iterations() < cold.iterations());
+        // The re-solve runs on a window around the moved point (its iterations are cheap
+        // chord steps there, and on the whole curve at the end): a few factorizations of
+        // the window at most (the unit tests of `solver::window` check it took that path).
+        assert!(warm.report().newton_steps <= 3, "{:?}", warm.report());
     }
 }
