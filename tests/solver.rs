@@ -261,19 +261,41 @@ fn warm_resolve_matches_cold_solve_and_is_cheaper() {
         let cold = Solver::new()
             .solve(&moved, true, scheme, &shape_of(scheme, a))
             .unwrap();
-        assert!(
-            warm.iterations() < cold.iterations(),
-            "{} vs {}",
-            warm.iterations(),
-            cold.iterations()
-        );
-        assert!(warm.iterations() <= cold0.iterations());
+        assert!(cold0.converged() && warm.converged());
         for (w, c) in warm.segments().iter().zip(cold.segments()) {
             for k in 0..3 {
                 assert!(dist(w.q[k], c.q[k]) < 1e-9 * 200.0);
             }
         }
         check_spline(&warm, &moved, true, 260.0, "warm");
+        // Cheaper: the warm re-solve iterates on a window around the moved point (chord
+        // steps there), so its iterations are not comparable with a cold solve's; the time
+        // is. The fastest of several runs of each, every warm one from the solution of the
+        // unmoved points.
+        let fastest = |f: &mut dyn FnMut() -> std::time::Duration| (0..7).map(|_| f()).min();
+        let cold_time = fastest(&mut || {
+            let t = std::time::Instant::now();
+            let c = Solver::new()
+                .solve(&moved, true, scheme, &shape_of(scheme, a))
+                .unwrap();
+            let time = t.elapsed();
+            assert!(c.converged());
+            time
+        });
+        let warm_time = fastest(&mut || {
+            solver
+                .solve(&pts, true, scheme, &shape_of(scheme, a))
+                .unwrap();
+            let t = std::time::Instant::now();
+            let w = solver.resolve(&moved).unwrap();
+            let time = t.elapsed();
+            assert!(w.converged());
+            time
+        });
+        assert!(
+            warm_time < cold_time,
+            "{scheme:?}: warm {warm_time:?}, cold {cold_time:?}"
+        );
     }
 }
 
