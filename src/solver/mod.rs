@@ -842,6 +842,13 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         phi
     }
 
+    /// Exchange the residual buffers (`res`, `check`, `scale`) with the trial ones.
+    fn swap_trial_residuals(&mut self) {
+        core::mem::swap(&mut self.res, &mut self.trial_res);
+        core::mem::swap(&mut self.check, &mut self.trial_check);
+        core::mem::swap(&mut self.scale, &mut self.trial_scale);
+    }
+
     /// Size the per-block buffers of the Newton steps for `n` blocks (no-op once sized).
     fn size_buffers(&mut self, n: usize) {
         self.res.resize(n, [0.0; B]);
@@ -1118,9 +1125,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 s == 1.0 && self.max_residual() <= QUADRATIC_REGION * tol && phi_trial.is_finite();
             if near || phi_trial <= (1.0 - 1e-4 * s) * phi {
                 core::mem::swap(&mut self.state, &mut self.trial);
-                core::mem::swap(&mut self.res, &mut self.trial_res);
-                core::mem::swap(&mut self.check, &mut self.trial_check);
-                core::mem::swap(&mut self.scale, &mut self.trial_scale);
+                self.swap_trial_residuals();
                 return true;
             }
             s *= 0.5;
@@ -1163,9 +1168,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     fn reduce_from(res: &[[f64; B]], cond: &[Condensed<B>], reduced: &mut [f64]) {
         let bb = B - 1;
         for ((r, c), out) in res.iter().zip(cond).zip(reduced.chunks_exact_mut(bb)) {
-            for k in 0..bb {
-                out[k] = -(r[k] - c.m[k] * r[D + 1]);
-            }
+            c.rhs(r, out);
         }
     }
 
@@ -1182,9 +1185,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let bb = B - 1;
         let own = reduced[j0 * bb..].chunks_exact(bb);
         for (((r, c), out), x) in res.iter().zip(cond).zip(step.chunks_exact_mut(B)).zip(own) {
-            let acc = -r[D + 1] - c.row_dot(reduced);
             out[..bb].copy_from_slice(x);
-            out[D + 1] = acc / c.p;
+            out[D + 1] = c.dt(r[D + 1], reduced);
         }
         step.iter().all(|x| x.is_finite())
     }
@@ -1697,6 +1699,22 @@ impl<const B: usize> Default for Condensed<B> {
 }
 
 impl<const B: usize> Condensed<B> {
+    /// The condensed right-hand side of a block with residual `r` (the peak row, last,
+    /// subtracted from the others by its multipliers), into `out` (`B - 1` entries).
+    #[inline]
+    fn rhs(&self, r: &[f64; B], out: &mut [f64]) {
+        for (k, o) in out[..B - 1].iter_mut().enumerate() {
+            *o = -(r[k] - self.m[k] * r[B - 1]);
+        }
+    }
+
+    /// The block's `δt` from its peak residual `peak` and the condensed step `reduced`
+    /// (all of it): the peak row solved for its own `t`.
+    #[inline]
+    fn dt(&self, peak: f64, reduced: &[f64]) -> f64 {
+        (-peak - self.row_dot(reduced)) / self.p
+    }
+
     /// `Σ row · δ` over the condensed unknowns `reduced`.
     #[inline]
     fn row_dot(&self, reduced: &[f64]) -> f64 {

@@ -173,9 +173,15 @@ impl<const B: usize> Window<B> {
     /// `(X acc)` at the condensed unknown `k` of outer block `p`: how far the outer
     /// unknown moves back for the window's total change so far.
     fn response(&self, p: usize, k: usize) -> f64 {
+        self.response_to(p, k, |q| self.acc[q])
+    }
+
+    /// `(X s)` at the condensed unknown `k` of outer block `p`, for the change `s(q)` of
+    /// the window unknown of column `q`.
+    fn response_to(&self, p: usize, k: usize, s: impl Fn(usize) -> f64) -> f64 {
         let nq = Self::nq();
         let row = &self.x[(p * (B - 1) + k) * nq..][..nq];
-        row.iter().zip(&self.acc).map(|(x, s)| x * s).sum()
+        row.iter().enumerate().map(|(q, x)| x * s(q)).sum()
     }
 
     /// The block at window position `i`.
@@ -421,10 +427,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     Self::check_row(r, g2, &loc, tol)
                         .into_iter()
                         .for_each(&mut measure);
-                    let cond = &w.wcond[i];
-                    for k in 0..bb {
-                        w.rhs[i * bb + k] = -(r[k] - cond.m[k] * r[D + 1]);
-                    }
+                    w.wcond[i].rhs(&r, &mut w.rhs[i * bb..]);
                     w.wres[i] = r;
                 }
                 if worst <= tol {
@@ -455,9 +458,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                             Slot::Outer(p) => jwo.push((row, p * bb + col % bb, v)),
                         }
                     });
-                    for k in 0..bb {
-                        w.rhs[i * bb + k] = -(r[k] - cond.m[k] * r[D + 1]);
-                    }
+                    cond.rhs(&r, &mut w.rhs[i * bb..]);
                     w.wres[i] = r;
                     w.wcond[i] = cond;
                     w.wscale[i] = scale;
@@ -505,7 +506,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             for i in 0..len {
                 let j = w.block(i);
                 let (r, cond) = (&w.wres[i], &w.wcond[i]);
-                let dt = (-r[D + 1] - cond.row_dot(&w.delta)) / cond.p;
+                let dt = cond.dt(r[D + 1], &w.delta);
                 for k in 0..bb {
                     *unknown_mut(state, j, k) += w.rhs[i * bb + k];
                 }
@@ -547,7 +548,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         for (p, &j) in w.outer.iter().enumerate() {
             let cond = &w.ocond[p];
-            let dt = -cond.row_dot(&w.delta) / cond.p;
+            let dt = cond.dt(0.0, &w.delta);
             state.t[j] = (state.t[j] + dt).clamp(0.0, 1.0);
         }
         // The whole curve's convergence test; where the outer blocks' linearization is not
@@ -574,9 +575,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             if !(residual <= FULL_RATE * last) {
                 // Not contracting: back to where it was (the global steps go on from there).
                 self.state.clone_from(&self.trial);
-                core::mem::swap(&mut self.res, &mut self.trial_res);
-                core::mem::swap(&mut self.check, &mut self.trial_check);
-                core::mem::swap(&mut self.scale, &mut self.trial_scale);
+                self.swap_trial_residuals();
                 residual = last;
                 break;
             }
@@ -605,9 +604,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             &mut self.trial_check,
             tol,
         );
-        core::mem::swap(&mut self.res, &mut self.trial_res);
-        core::mem::swap(&mut self.check, &mut self.trial_check);
-        core::mem::swap(&mut self.scale, &mut self.trial_scale);
+        self.swap_trial_residuals();
     }
 
     /// One chord step on the whole curve from the residual in `res`, with the window's
@@ -617,7 +614,6 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     fn full_chord(&mut self, prob: &Problem<D>) -> bool {
         let n = prob.p.len();
         let bb = B - 1;
-        let nq = Window::<B>::nq();
         let Workspace {
             state,
             window: w,
@@ -626,17 +622,13 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         } = self;
         let len = w.len;
         // Condensed right-hand sides: outer blocks in band order, then the window's.
-        w.yo.clear();
+        w.yo.resize(w.outer.len() * bb, 0.0);
         for (p, &j) in w.outer.iter().enumerate() {
-            let (r, m) = (&res[j], &w.ocond[p].m);
-            w.yo.extend((0..bb).map(|k| -(r[k] - m[k] * r[D + 1])));
+            w.ocond[p].rhs(&res[j], &mut w.yo[p * bb..]);
         }
         w.band.solve(&mut w.yo);
         for i in 0..len {
-            let (r, m) = (&res[w.block(i)], &w.wcond[i].m);
-            for k in 0..bb {
-                w.rhs[i * bb + k] = -(r[k] - m[k] * r[D + 1]);
-            }
+            w.wcond[i].rhs(&res[w.block(i)], &mut w.rhs[i * bb..]);
         }
         for &(row, o, v) in &w.jwo {
             w.rhs[row] -= v * w.yo[o];
@@ -650,10 +642,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             w.delta[j * bb..(j + 1) * bb].copy_from_slice(&w.rhs[i * bb..(i + 1) * bb]);
         }
         for (p, &j) in w.outer.iter().enumerate() {
-            let row = &w.x[p * bb * nq..(p + 1) * bb * nq];
             for k in 0..bb {
-                let xr = &row[k * nq..(k + 1) * nq];
-                let back: f64 = (0..nq).map(|q| xr[q] * w.rhs[w.xcol(q)]).sum();
+                let back = w.response_to(p, k, |q| w.rhs[w.xcol(q)]);
                 w.delta[j * bb + k] = w.yo[p * bb + k] - back;
             }
         }
@@ -663,7 +653,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 Slot::Window(i) => &w.wcond[i],
                 Slot::Outer(p) => &w.ocond[p],
             };
-            let dt = (-r[D + 1] - cond.row_dot(&w.delta)) / cond.p;
+            let dt = cond.dt(r[D + 1], &w.delta);
             for k in 0..bb {
                 *unknown_mut(state, j, k) += w.delta[j * bb + k];
             }
