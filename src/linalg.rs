@@ -66,11 +66,31 @@ impl BandLu {
     }
 
     /// Factor in place. Returns `false` if a pivot is zero or not finite.
+    ///
+    /// Each row of `U` is stored divided by its pivot, with the pivot's reciprocal in its
+    /// place: the backward substitution then takes one multiply-add per row on its
+    /// dependency chain (`x_k = b_k / u_kk - Σ (u_kj / u_kk) x_j`).
     pub(crate) fn factor(&mut self) -> bool {
-        match (self.kl, self.ku) {
+        let ok = match (self.kl, self.ku) {
             (5, 5) => self.factor_fixed::<5, 10, 16>(),
             (7, 7) => self.factor_fixed::<7, 14, 22>(),
             _ => self.factor_general(),
+        };
+        if ok {
+            self.scale_rows();
+        }
+        ok
+    }
+
+    /// Divide each row of the factor `U` by its pivot, which is replaced by its reciprocal.
+    fn scale_rows(&mut self) {
+        let kl = self.kl;
+        for row in self.a.chunks_exact_mut(self.w) {
+            let inv = 1.0 / row[kl];
+            row[kl] = inv;
+            for x in &mut row[kl + 1..] {
+                *x *= inv;
+            }
         }
     }
 
@@ -192,34 +212,34 @@ impl BandLu {
                 }
             }
         }
-        // Backward: `U x = y`; row `k` holds `U[k][k..=k+U]` from offset `KL`.
+        // Backward: `U x = y`; row `k` holds `U[k][k..=k+U]` from offset `KL`, divided by
+        // the pivot, whose reciprocal is at `KL`.
         for (k, row) in self.a.chunks_exact(W).enumerate().rev() {
-            let s = if k + U < n {
+            b[k] = if k + U < n {
                 let x = &b[k + 1..k + 1 + U];
-                // `x[0]` was solved for just before: its product is added last, so the
-                // chain from one row's solution to the next is one multiply-add, and the
-                // rest (two partial sums) runs ahead.
-                let (mut s0, mut s1) = (0.0, 0.0);
+                // `x[0]` was solved for just before: its product is subtracted last, so the
+                // chain from one row's solution to the next is one multiply and one
+                // subtraction, and the rest (two partial sums) runs ahead.
+                let (mut s0, mut s1) = (b[k] * row[KL], 0.0);
                 let mut i = 1;
                 while i + 1 < U {
-                    s0 += row[KL + 1 + i] * x[i];
-                    s1 += row[KL + 2 + i] * x[i + 1];
+                    s0 -= row[KL + 1 + i] * x[i];
+                    s1 -= row[KL + 2 + i] * x[i + 1];
                     i += 2;
                 }
                 if i < U {
-                    s0 += row[KL + 1 + i] * x[i];
+                    s0 -= row[KL + 1 + i] * x[i];
                 }
-                (s0 + s1) + row[KL + 1] * x[0]
+                (s0 + s1) - row[KL + 1] * x[0]
             } else {
-                row[KL + 1..]
+                let s: f64 = row[KL + 1..]
                     .iter()
                     .zip(&b[k + 1..])
                     .rev()
                     .map(|(a, x)| a * x)
-                    .sum()
+                    .sum();
+                b[k] * row[KL] - s
             };
-            // The reciprocal does not depend on `b`: it is computed off the critical path.
-            b[k] = (b[k] - s) * (1.0 / row[KL]);
         }
     }
 
@@ -251,7 +271,7 @@ impl BandLu {
                 .rev()
                 .map(|(a, x)| a * x)
                 .sum();
-            b[k] = (b[k] - s) * (1.0 / self.a[rk]);
+            b[k] = b[k] * self.a[rk] - s;
         }
     }
 
@@ -299,6 +319,10 @@ impl BandLu {
             let len = U.min(n - 1 - k);
             let (head, tail) = b.split_at_mut((k + 1) * M);
             let mut acc: [f64; M] = head[k * M..].try_into().unwrap();
+            let inv = self.a[rk];
+            for v in &mut acc {
+                *v *= inv;
+            }
             // The row solved just before (`i = 0`) comes last, off the other products'
             // dependency chain (as in [`BandLu::solve_fixed`]).
             let row = &self.a[rk + 1..rk + 1 + len];
@@ -314,10 +338,7 @@ impl BandLu {
                     acc[r] -= a * bi[r];
                 }
             }
-            let inv = 1.0 / self.a[rk];
-            for (x, v) in head[k * M..].iter_mut().zip(acc) {
-                *x = v * inv;
-            }
+            head[k * M..].copy_from_slice(&acc);
         }
     }
 
@@ -350,16 +371,16 @@ impl BandLu {
             let len = (k + kl + self.ku).min(n - 1) - k + 1;
             let (head, tail) = b.split_at_mut((k + 1) * m);
             let bk = &mut head[k * m..];
+            let inv = self.a[rk];
+            for x in bk.iter_mut() {
+                *x *= inv;
+            }
             for (&a, bi) in self.a[rk + 1..rk + len].iter().zip(tail.chunks_exact(m)) {
                 if a != 0.0 {
                     for (x, y) in bk.iter_mut().zip(bi) {
                         *x -= a * y;
                     }
                 }
-            }
-            let inv = 1.0 / self.a[rk];
-            for x in bk.iter_mut() {
-                *x *= inv;
             }
         }
     }
@@ -389,8 +410,26 @@ impl DenseLu {
         self.a[i * self.n + j] += v;
     }
 
-    /// Factor in place. Returns `false` if a pivot is zero or not finite.
+    /// Factor in place. Returns `false` if a pivot is zero or not finite. As in
+    /// [`BandLu::factor`], the rows of `U` are stored divided by their pivots, with the
+    /// pivots' reciprocals on the diagonal.
     pub(crate) fn factor(&mut self) -> bool {
+        let ok = self.factor_unscaled();
+        if ok {
+            let n = self.n;
+            for (k, row) in self.a.chunks_exact_mut(n).enumerate() {
+                let inv = 1.0 / row[k];
+                row[k] = inv;
+                for x in &mut row[k + 1..] {
+                    *x *= inv;
+                }
+            }
+        }
+        ok
+    }
+
+    /// The LU factors with `U` as it is.
+    fn factor_unscaled(&mut self) -> bool {
         // The orders of the small κ/εκ systems (blocks of 3 unknowns in 2D, 4 in 3D) get
         // kernels with the order known at compile time; the arithmetic is the same.
         match self.n {
@@ -426,8 +465,8 @@ impl DenseLu {
             // The pivot row's active part, zero elsewhere: every row below is updated over
             // its whole (fixed) length, which leaves its multipliers (columns < k) as they
             // are and vectorizes.
-            let mut pivot_row = [0.0; N];
-            pivot_row[k + 1..].copy_from_slice(&top[k * N + k + 1..(k + 1) * N]);
+            let mut pivot_row: [f64; N] = top[k * N..(k + 1) * N].try_into().unwrap();
+            pivot_row[..=k].fill(0.0);
             for row in below.chunks_exact_mut(N) {
                 let row: &mut [f64; N] = row.try_into().unwrap();
                 let f = row[k] * inv;
@@ -507,11 +546,11 @@ impl DenseLu {
         for (k, row) in a.chunks_exact(N).enumerate().rev() {
             let row: &[f64; N] = row.try_into().unwrap();
             // As in `solve_general`: the latest unknown enters the sum last.
-            let mut s = -0.0;
+            let mut s = b[k] * row[k];
             for j in (k + 1..N).rev() {
-                s += row[j] * b[j];
+                s -= row[j] * b[j];
             }
-            b[k] = (b[k] - s) * (1.0 / row[k]);
+            b[k] = s;
         }
     }
 
@@ -530,7 +569,7 @@ impl DenseLu {
             // Summed from the far end: the unknown solved just before (`b[k + 1]`) enters
             // last, so the dependency chain between rows is one multiply-add, not `n - k`.
             let s: f64 = row.iter().zip(&b[k + 1..]).rev().map(|(a, x)| a * x).sum();
-            b[k] = (b[k] - s) * (1.0 / self.a[k * n + k]);
+            b[k] = b[k] * self.a[k * n + k] - s;
         }
     }
 }
@@ -1221,6 +1260,7 @@ mod tests {
             }
             let mut slow = band.clone();
             assert!(band.factor() && slow.factor_general());
+            slow.scale_rows();
             assert_eq!(band.piv, slow.piv);
             for (x, y) in band.a.iter().zip(&slow.a) {
                 assert!(

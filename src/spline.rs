@@ -624,6 +624,9 @@ pub struct SolverN<P, const D: usize, const B: usize> {
     points: Vec<[f64; D]>,
     /// Whether `ws` holds a solution matching `prob`'s structure.
     warm: bool,
+    /// The input points in the normalized frame (all of them; `prob` keeps those with a
+    /// segment).
+    local: Vec<[f64; D]>,
     _marker: core::marker::PhantomData<P>,
 }
 
@@ -668,6 +671,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             scheme: Scheme::Kappa,
             points: Vec::new(),
             warm: false,
+            local: Vec::new(),
             _marker: core::marker::PhantomData,
         }
     }
@@ -687,7 +691,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
     ) -> Result<Spline<P>, Error> {
         // Whatever happens next, the previous solution no longer matches the problem.
         self.warm = false;
-        self.setup(points, closed, scheme, shape)?;
+        self.setup(points, closed, scheme, Some(shape))?;
         self.run()
     }
 
@@ -723,8 +727,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         self.ws.refresh_jacobian(&self.prob, self.options.tolerance);
         let old_frame = self.frame;
         let old_points = core::mem::take(&mut self.points);
-        let shapes = self.shapes();
-        if let Err(e) = self.setup(points, self.prob.closed, self.scheme, &shapes) {
+        if let Err(e) = self.setup(points, self.prob.closed, self.scheme, None) {
             self.warm = false;
             return Err(e);
         }
@@ -788,13 +791,14 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         a
     }
 
-    /// Validate and normalize the input into `self.prob`.
+    /// Validate and normalize the input into `self.prob`, with new shapes, or (`None`, for
+    /// a re-solve with as many points) the current ones.
     fn setup(
         &mut self,
         points: &[P],
         closed: bool,
         scheme: Scheme,
-        shape: &Shape,
+        shape: Option<&Shape>,
     ) -> Result<(), Error> {
         let m = points.len();
         // The points are kept even when they are rejected, so that a later `resolve_shapes`
@@ -834,11 +838,11 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         if !self.frame.size.is_finite() || !reach.is_finite() {
             return Err(Error::ExtentOverflow);
         }
-        let local: Vec<[f64; D]> = self
-            .points
-            .iter()
-            .map(|&p| self.frame.to_local(p))
-            .collect();
+        let frame = &self.frame;
+        self.local.clear();
+        self.local
+            .extend(self.points.iter().map(|&p| frame.to_local(p)));
+        let local = &self.local;
         let pairs = if closed { m } else { m - 1 };
         for i in 0..pairs {
             let next = (i + 1) % m;
@@ -850,17 +854,19 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                 return Err(Error::RepeatedPoint { index: i, next });
             }
         }
-        if closed && collinear(&local) {
+        if closed && collinear(local) {
             return Err(Error::Collinear);
         }
-        let shapes = expand_shapes(scheme, shape, m)?;
+        let shapes = shape.map(|s| expand_shapes(scheme, s, m)).transpose()?;
         self.prob.closed = closed;
         self.prob.p.clear();
         self.prob
             .p
             .extend_from_slice(&local[block_range(closed, m)]);
         self.prob.ghost = [local[0], local[m - 1]];
-        self.set_shapes(scheme, &shapes);
+        if let Some(shapes) = shapes {
+            self.set_shapes(scheme, &shapes);
+        }
         Ok(())
     }
 

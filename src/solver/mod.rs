@@ -1234,6 +1234,23 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// turn or a near-straight joint (capped at [`MAX_FLOOR`]).
     #[inline]
     fn check_row(r: [f64; B], g2: f64, loc: &Local<D>, tol: f64) -> [f64; B] {
+        Self::check_scaled(r, g2, Self::check_scales(loc, tol))
+    }
+
+    /// [`check_row`](Self::check_row) with the scales of its G2 and peak rows given (as
+    /// [`check_scales`](Self::check_scales) computes them).
+    #[inline]
+    fn check_scaled(r: [f64; B], g2: f64, scales: [f64; 2]) -> [f64; B] {
+        let mut c = r;
+        c[D] = g2 * scales[0];
+        c[D + 1] *= scales[1];
+        c
+    }
+
+    /// The scales [`check_row`](Self::check_row) applies to the G2 and the peak row of a
+    /// block: the tolerance over each row's rounding floor, at most 1.
+    #[inline]
+    fn check_scales(loc: &Local<D>, tol: f64) -> [f64; 2] {
         let local = dist(loc.cm, loc.c0) + dist(loc.c0, loc.c1);
         let thin = |a: [f64; D], b: [f64; D], c: [f64; D]| {
             let (u, v) = (sub(a, b), sub(c, b));
@@ -1245,10 +1262,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let area = thin(loc.cm, loc.c0, loc.c1).max(thin(loc.c0, loc.c1, loc.c2));
         let floor = ROUNDING_FLOOR / local.max(f64::MIN_POSITIVE);
         let g2_floor = floor.max((ROUNDING_FLOOR * area).min(MAX_FLOOR));
-        let mut c = r;
-        c[D] = g2 * (tol / g2_floor).min(1.0);
-        c[D + 1] *= (tol / floor).min(1.0);
-        c
+        [(tol / g2_floor).min(1.0), (tol / floor).min(1.0)]
     }
 
     /// Merit `½|R|²` of the trial state, with row scales computed at the trial state (which

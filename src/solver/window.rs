@@ -146,6 +146,10 @@ pub(crate) struct Window<const B: usize> {
     wres: Vec<[f64; B]>,
     /// The row scales of the window's blocks in the factored Jacobian.
     wscale: Vec<[f64; 2]>,
+    /// The scales of the window's blocks' convergence measures (see
+    /// [`Workspace::check_scales`]), computed at the first step of a re-solve and kept for
+    /// its steps; the whole curve's final test computes its own.
+    wcheck: Vec<[f64; 2]>,
     wcond: Vec<Condensed<B>>,
     /// The window's right-hand side, then its step.
     rhs: Vec<f64>,
@@ -392,6 +396,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         w.wcond.resize(len, Condensed::default());
         w.rhs.resize(len * bb, 0.0);
         w.wscale.resize(len, [1.0; 2]);
+        w.wcheck.resize(len, [1.0; 2]);
         let (mut steps, mut newton) = (0, 0);
         let (kl, ku) = (2 * bb - 1, 2 * bb - 1);
         // Chord steps reuse the factors of the last Newton step (the first one those of the
@@ -424,7 +429,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                         &mut g2,
                         &mut ignore,
                     );
-                    Self::check_row(r, g2, &loc, tol)
+                    if steps == 0 {
+                        w.wcheck[i] = Self::check_scales(&loc, tol);
+                    }
+                    Self::check_scaled(r, g2, w.wcheck[i])
                         .into_iter()
                         .for_each(&mut measure);
                     w.wcond[i].rhs(&r, &mut w.rhs[i * bb..]);
@@ -446,7 +454,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     let loc = Self::local(prob, state, j);
                     let (mut scale, mut g2) = ([1.0; 2], 0.0);
                     let (r, mut jl) = Self::block_jacobian(prob, j, &loc, &mut scale, &mut g2);
-                    Self::check_row(r, g2, &loc, tol)
+                    w.wcheck[i] = Self::check_scales(&loc, tol);
+                    Self::check_scaled(r, g2, w.wcheck[i])
                         .into_iter()
                         .for_each(&mut measure);
                     let columns = Columns::new::<D, B>(prob.closed, n, j, bb);
