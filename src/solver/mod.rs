@@ -112,12 +112,6 @@ fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
 }
 
 #[inline]
-fn dist<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
-    let d = sub(a, b);
-    dot(d, d).sqrt()
-}
-
-#[inline]
 fn dot<const D: usize>(a: [f64; D], b: [f64; D]) -> f64 {
     (0..D).map(|k| a[k] * b[k]).sum()
 }
@@ -1251,15 +1245,23 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// block: the tolerance over each row's rounding floor, at most 1.
     #[inline]
     fn check_scales(loc: &Local<D>, tol: f64) -> [f64; 2] {
-        let local = dist(loc.cm, loc.c0) + dist(loc.c0, loc.c1);
-        let thin = |a: [f64; D], b: [f64; D], c: [f64; D]| {
-            let (u, v) = (sub(a, b), sub(c, b));
-            let (nu, nv) = (dot(u, u).sqrt(), dot(v, v).sqrt());
-            let cross2 = dot(u, u) * dot(v, v) - dot(u, v) * dot(u, v);
-            // (|u| + |v|) / |u × v|, without dividing by zero.
-            (nu + nv) / cross2.max(0.0).sqrt().max(f64::MIN_POSITIVE)
+        // The control polygon's edges into and out of `c_j` and out of `c_{j+1}`.
+        let (a, b, e) = (
+            sub(loc.c0, loc.cm),
+            sub(loc.c1, loc.c0),
+            sub(loc.c2, loc.c1),
+        );
+        let (aa, bb, ee) = (dot(a, a), dot(b, b), dot(e, e));
+        let (na, nb, ne) = (aa.sqrt(), bb.sqrt(), ee.sqrt());
+        let local = na + nb;
+        // `(|u| + |v|)² / |u × v|²` at the joints `c_j` and `c_{j+1}`, without dividing by
+        // zero; the larger one's square root is the `thin` measure.
+        let thin2 = |nu: f64, nv: f64, uu: f64, vv: f64, uv: f64| {
+            (nu + nv) * (nu + nv) / (uu * vv - uv * uv).max(f64::MIN_POSITIVE)
         };
-        let area = thin(loc.cm, loc.c0, loc.c1).max(thin(loc.c0, loc.c1, loc.c2));
+        let area = thin2(na, nb, aa, bb, dot(a, b))
+            .max(thin2(nb, ne, bb, ee, dot(b, e)))
+            .sqrt();
         let floor = ROUNDING_FLOOR / local.max(f64::MIN_POSITIVE);
         let g2_floor = floor.max((ROUNDING_FLOOR * area).min(MAX_FLOOR));
         [(tol / g2_floor).min(1.0), (tol / floor).min(1.0)]
