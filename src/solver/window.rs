@@ -28,7 +28,8 @@
 //! not converge do the global chord and Newton steps take over.
 
 use super::{
-    condense, lambda_valid, scatter, Columns, Condensed, Outcome, Problem, Settings, Workspace,
+    condense, lambda_valid, scatter, Columns, Condensed, Outcome, Problem, Settings, Split,
+    Workspace,
 };
 use crate::linalg::BandLu;
 
@@ -150,6 +151,8 @@ pub(crate) struct Window<const B: usize> {
     /// [`Workspace::check_scales`]), computed at the first step of a re-solve and kept for
     /// its steps; the whole curve's final test computes its own.
     wcheck: Vec<[f64; 2]>,
+    /// The convergence measures of the window's blocks, as last evaluated.
+    wmeasure: Vec<[f64; B]>,
     wcond: Vec<Condensed<B>>,
     /// The window's right-hand side, then its step.
     rhs: Vec<f64>,
@@ -397,6 +400,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         w.rhs.resize(len * bb, 0.0);
         w.wscale.resize(len, [1.0; 2]);
         w.wcheck.resize(len, [1.0; 2]);
+        w.wmeasure.resize(len, [0.0; B]);
         let (mut steps, mut newton) = (0, 0);
         let (kl, ku) = (2 * bb - 1, 2 * bb - 1);
         // Chord steps reuse the factors of the last Newton step (the first one those of the
@@ -432,9 +436,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     if steps == 0 {
                         w.wcheck[i] = Self::check_scales(&loc, tol);
                     }
-                    Self::check_scaled(r, g2, w.wcheck[i])
-                        .into_iter()
-                        .for_each(&mut measure);
+                    w.wmeasure[i] = Self::check_scaled(r, g2, w.wcheck[i]);
+                    w.wmeasure[i].into_iter().for_each(&mut measure);
                     w.wcond[i].rhs(&r, &mut w.rhs[i * bb..]);
                     w.wres[i] = r;
                 }
@@ -455,9 +458,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     let (mut scale, mut g2) = ([1.0; 2], 0.0);
                     let (r, mut jl) = Self::block_jacobian(prob, j, &loc, &mut scale, &mut g2);
                     w.wcheck[i] = Self::check_scales(&loc, tol);
-                    Self::check_scaled(r, g2, w.wcheck[i])
-                        .into_iter()
-                        .for_each(&mut measure);
+                    w.wmeasure[i] = Self::check_scaled(r, g2, w.wcheck[i]);
+                    w.wmeasure[i].into_iter().for_each(&mut measure);
                     let columns = Columns::new::<D, B>(prob.closed, n, j, bb);
                     let cond = condense::<D, B>(&mut jl, &columns);
                     let (slot, lin, jwo) = (&w.slot, &mut w.lin, &mut w.jwo);
@@ -562,7 +564,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         // The whole curve's convergence test; where the outer blocks' linearization is not
         // accurate enough, chord steps on the whole curve.
-        self.measure_all(prob, tol);
+        self.measure_after_window(prob, tol);
         let mut residual = self.max_residual();
         let (mut chords, mut last) = (0, f64::INFINITY);
         while residual > tol
@@ -613,6 +615,42 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             &mut self.trial_check,
             tol,
         );
+        self.swap_trial_residuals();
+    }
+
+    /// [`measure_all`](Self::measure_all) right after the window's steps: the window's
+    /// blocks as its last step measured them (the state has not changed there since, only
+    /// the row scales are those of the window's factors), the outer blocks anew.
+    fn measure_after_window(&mut self, prob: &Problem<D>, tol: f64) {
+        let n = prob.p.len();
+        if Split::of(prob.closed, n).is_some() {
+            // Long curves measure in parallel pieces; the window is a small part of them.
+            return self.measure_all(prob, tol);
+        }
+        let w = &self.window;
+        for i in 0..w.len {
+            let j = w.block(i);
+            self.trial_res[j] = w.wres[i];
+            self.trial_scale[j] = w.wscale[i];
+            self.trial_check[j] = w.wmeasure[i];
+        }
+        let end = w.a + w.len;
+        let outer = if end <= n {
+            [0..w.a, end..n]
+        } else {
+            [end - n..w.a, 0..0]
+        };
+        for r in outer {
+            Self::residuals_from::<false>(
+                prob,
+                &self.state,
+                r.start,
+                &mut self.trial_scale[r.clone()],
+                &mut self.trial_res[r.clone()],
+                &mut self.trial_check[r],
+                tol,
+            );
+        }
         self.swap_trial_residuals();
     }
 
