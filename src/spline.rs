@@ -843,14 +843,20 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         self.local
             .extend(self.points.iter().map(|&p| frame.to_local(p)));
         let local = &self.local;
+        // Points within rounding of each other in user coordinates are at most
+        // `ULP_COINCIDENT ε max |coordinate|` apart, which bounds their local distance (with
+        // room for the rounding of the normalization): pairs farther apart skip that test.
+        let magnitude = frame.center.iter().fold(0.0f64, |m, c| m.max(c.abs())) + frame.size;
+        let rounding = 2.0 * (ULP_COINCIDENT * magnitude / frame.size + 4.0) * f64::EPSILON;
         let pairs = if closed { m } else { m - 1 };
         for i in 0..pairs {
             let next = (i + 1) % m;
-            let d = (0..D)
+            let d2 = (0..D)
                 .map(|k| (local[next][k] - local[i][k]).powi(2))
-                .sum::<f64>()
-                .sqrt();
-            if d <= COINCIDENT || within_rounding(self.points[i], self.points[next]) {
+                .sum::<f64>();
+            if d2 <= COINCIDENT * COINCIDENT
+                || (d2 <= rounding * rounding && within_rounding(self.points[i], self.points[next]))
+            {
                 return Err(Error::RepeatedPoint { index: i, next });
             }
         }
