@@ -180,7 +180,16 @@ impl<const B: usize> Window<B> {
     /// `(X acc)` at the condensed unknown `k` of outer block `p`: how far the outer
     /// unknown moves back for the window's total change so far.
     fn response(&self, p: usize, k: usize) -> f64 {
-        self.response_to(p, k, |q| self.acc[q])
+        let nq = Self::nq();
+        let row = &self.x[(p * (B - 1) + k) * nq..][..nq];
+        // Four partial sums (`nq` is a multiple of 4), which vectorize.
+        let mut lanes = [0.0; 4];
+        for (x, a) in row.chunks_exact(4).zip(self.acc[..nq].chunks_exact(4)) {
+            for l in 0..4 {
+                lanes[l] += x[l] * a[l];
+            }
+        }
+        (lanes[0] + lanes[1]) + (lanes[2] + lanes[3])
     }
 
     /// `(X s)` at the condensed unknown `k` of outer block `p`, for the change `s(q)` of
