@@ -1014,11 +1014,13 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         let mut segments = Vec::with_capacity(n);
         let user = |p: [f64; D]| P::from_coords(self.frame.to_user(p));
         // Segment j's end and segment j+1's start are the same `lerp(c_j, c_{j+1}, λ_j)`, so
-        // consecutive segments meet exactly.
+        // consecutive segments meet exactly (each joint is computed once).
+        let mut start = user(st.segment(prob, 0)[0]);
         for j in 0..n {
-            let [q0, c, q2] = st.segment(prob, j);
+            let [_, c, q2] = st.segment(prob, j);
+            let end = user(q2);
             segments.push(Segment {
-                q: [user(q0), user(c), user(q2)],
+                q: [core::mem::replace(&mut start, end), user(c), end],
                 a: prob.basis[j].a(),
                 t_max: st.t[j],
                 degree: self.scheme.degree(),
