@@ -547,7 +547,7 @@ fn svg_number(x: f64) -> String {
 }
 
 /// Affine map from user coordinates to the normalized frame (drawing size 1).
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 struct Frame<const D: usize> {
     center: [f64; D],
     size: f64,
@@ -749,9 +749,19 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             .and_then(|m| Edit::of(self.prob.closed, self.prob.p.len(), m));
         self.ws.set_edit(edit, self.frame.size != old_frame.size);
         // Carry the previous unknowns into the new frame, moving each control point with
-        // its input point.
+        // its input point (in the same frame, only those of moved points change).
         let off = if self.prob.closed { 0 } else { 1 };
         let st = &mut self.ws.state;
+        if self.frame == old_frame {
+            for (j, c) in st.c.iter_mut().enumerate() {
+                let (new, old) = (self.points[j + off], old_points[j + off]);
+                if new != old {
+                    let (new, old) = (self.frame.to_local(new), self.frame.to_local(old));
+                    *c = core::array::from_fn(|k| c[k] + (new[k] - old[k]));
+                }
+            }
+            return self.run();
+        }
         for (j, c) in st.c.iter_mut().enumerate() {
             let user = old_frame.to_user(*c);
             let moved: [f64; D] = core::array::from_fn(|k| {

@@ -179,6 +179,7 @@ impl<const B: usize> Window<B> {
 
     /// `(X acc)` at the condensed unknown `k` of outer block `p`: how far the outer
     /// unknown moves back for the window's total change so far.
+    #[inline(always)]
     fn response(&self, p: usize, k: usize) -> f64 {
         let nq = Self::nq();
         let row = &self.x[(p * (B - 1) + k) * nq..][..nq];
