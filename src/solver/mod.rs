@@ -1689,8 +1689,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
 struct Condensed<const B: usize> {
     /// Multiplier of the peak row subtracted from each of the other rows of the block.
     m: [f64; B],
-    /// The pivot `∂R_t / ∂t_j`.
-    p: f64,
+    /// The reciprocal of the pivot `∂R_t / ∂t_j`.
+    inv: f64,
     /// The nonzero entries of the peak row (its own `t_j` entry excluded) in the condensed
     /// system's unknowns, as columns and values (the first `len`): what recovering `δt_j`
     /// from the condensed solution needs.
@@ -1706,7 +1706,7 @@ impl<const B: usize> Default for Condensed<B> {
     fn default() -> Self {
         Condensed {
             m: [0.0; B],
-            p: 1.0,
+            inv: 1.0,
             cols: [0; BACK_MAX],
             vals: [0.0; BACK_MAX],
             len: 0,
@@ -1728,7 +1728,7 @@ impl<const B: usize> Condensed<B> {
     /// (all of it): the peak row solved for its own `t`.
     #[inline]
     fn dt(&self, peak: f64, reduced: &[f64]) -> f64 {
-        (-peak - self.row_dot(reduced)) / self.p
+        (-peak - self.row_dot(reduced)) * self.inv
     }
 
     /// `Σ row · δ` over the condensed unknowns `reduced`.
@@ -1774,10 +1774,11 @@ fn condense<const D: usize, const B: usize>(
     if !(p.abs() >= MIN_PIVOT) {
         p = if p < 0.0 { -MIN_PIVOT } else { MIN_PIVOT };
     }
+    let inv = 1.0 / p;
     let peak = jl[tr];
     let mut m = [0.0; B];
     for (r, mr) in m.iter_mut().enumerate().take(D + 1) {
-        let f = jl[r][to][tk] / p;
+        let f = jl[r][to][tk] * inv;
         *mr = f;
         if f != 0.0 {
             for (row, prow) in jl[r].iter_mut().zip(&peak) {
@@ -1790,7 +1791,7 @@ fn condense<const D: usize, const B: usize>(
     }
     let mut out = Condensed {
         m,
-        p,
+        inv,
         ..Condensed::default()
     };
     for (o, block) in peak.iter().enumerate() {
