@@ -747,7 +747,11 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         let edit = moved
             .get(..count)
             .and_then(|m| Edit::of(self.prob.closed, self.prob.p.len(), m));
-        self.ws.set_edit(edit, self.frame.size != old_frame.size);
+        self.ws.set_edit(
+            edit,
+            self.frame.size != old_frame.size,
+            self.frame != old_frame,
+        );
         // Carry the previous unknowns into the new frame, moving each control point with
         // its input point (in the same frame, only those of moved points change).
         let off = if self.prob.closed { 0 } else { 1 };

@@ -588,6 +588,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     pub(crate) fn cold_start(&mut self, prob: &Problem<D>) {
         #[allow(clippy::let_unit_value)]
         let _ = Self::CHECK;
+        self.window.measured = false;
         let n = prob.p.len();
         let st = &mut self.state;
         st.c.clear();
@@ -625,11 +626,15 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
 
     /// The edit the next warm re-solve follows (`None`: points moved all over, or not at
     /// all); `rescaled` if the normalization changed scale, which the window's linearization
-    /// does not carry over.
-    pub(crate) fn set_edit(&mut self, edit: Option<Edit>, rescaled: bool) {
+    /// does not carry over; `reframed` if it changed at all, which moves every control point.
+    pub(crate) fn set_edit(&mut self, edit: Option<Edit>, rescaled: bool, reframed: bool) {
         self.edit = edit;
         if rescaled {
             self.window.invalidate();
+        }
+        if reframed {
+            // Every control point moved in the normalized frame.
+            self.window.measured = false;
         }
     }
 
@@ -639,8 +644,11 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     pub(crate) fn solve_warm(&mut self, prob: &Problem<D>, set: &Settings) -> Outcome {
         let n = prob.p.len();
         let mut out = Outcome::default();
+        // Whether the residual buffers still hold the measure of the state (a window
+        // re-solve's, which only this re-solve's own window steps can renew).
+        let measured = core::mem::take(&mut self.window.measured);
         if let Some(edit) = self.edit.take() {
-            if let Some(local) = self.solve_window(prob, set, edit) {
+            if let Some(local) = self.solve_window(prob, set, edit, measured) {
                 if local.converged {
                     return local;
                 }
