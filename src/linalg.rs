@@ -410,26 +410,8 @@ impl DenseLu {
         self.a[i * self.n + j] += v;
     }
 
-    /// Factor in place. Returns `false` if a pivot is zero or not finite. As in
-    /// [`BandLu::factor`], the rows of `U` are stored divided by their pivots, with the
-    /// pivots' reciprocals on the diagonal.
+    /// Factor in place. Returns `false` if a pivot is zero or not finite.
     pub(crate) fn factor(&mut self) -> bool {
-        let ok = self.factor_unscaled();
-        if ok {
-            let n = self.n;
-            for (k, row) in self.a.chunks_exact_mut(n).enumerate() {
-                let inv = 1.0 / row[k];
-                row[k] = inv;
-                for x in &mut row[k + 1..] {
-                    *x *= inv;
-                }
-            }
-        }
-        ok
-    }
-
-    /// The LU factors with `U` as it is.
-    fn factor_unscaled(&mut self) -> bool {
         // The orders of the small κ/εκ systems (blocks of 3 unknowns in 2D, 4 in 3D) get
         // kernels with the order known at compile time; the arithmetic is the same.
         match self.n {
@@ -465,8 +447,8 @@ impl DenseLu {
             // The pivot row's active part, zero elsewhere: every row below is updated over
             // its whole (fixed) length, which leaves its multipliers (columns < k) as they
             // are and vectorizes.
-            let mut pivot_row: [f64; N] = top[k * N..(k + 1) * N].try_into().unwrap();
-            pivot_row[..=k].fill(0.0);
+            let mut pivot_row = [0.0; N];
+            pivot_row[k + 1..].copy_from_slice(&top[k * N + k + 1..(k + 1) * N]);
             for row in below.chunks_exact_mut(N) {
                 let row: &mut [f64; N] = row.try_into().unwrap();
                 let f = row[k] * inv;
@@ -546,11 +528,11 @@ impl DenseLu {
         for (k, row) in a.chunks_exact(N).enumerate().rev() {
             let row: &[f64; N] = row.try_into().unwrap();
             // As in `solve_general`: the latest unknown enters the sum last.
-            let mut s = b[k] * row[k];
+            let mut s = -0.0;
             for j in (k + 1..N).rev() {
-                s -= row[j] * b[j];
+                s += row[j] * b[j];
             }
-            b[k] = s;
+            b[k] = (b[k] - s) * (1.0 / row[k]);
         }
     }
 
@@ -569,7 +551,7 @@ impl DenseLu {
             // Summed from the far end: the unknown solved just before (`b[k + 1]`) enters
             // last, so the dependency chain between rows is one multiply-add, not `n - k`.
             let s: f64 = row.iter().zip(&b[k + 1..]).rev().map(|(a, x)| a * x).sum();
-            b[k] = b[k] * self.a[k * n + k] - s;
+            b[k] = (b[k] - s) * (1.0 / self.a[k * n + k]);
         }
     }
 }
