@@ -52,6 +52,8 @@ const FULL_RATE: f64 = 0.25;
 const MAX_NEWTON: usize = 8;
 /// Steps on the window (chord and Newton) before the global steps take over.
 const MAX_STEPS: usize = 16;
+/// A window Newton step halved below this fraction gives up (the global steps take over).
+const MIN_DAMPING: f64 = 1.0 / 64.0;
 
 /// The blocks an edit moved: `count` consecutive blocks from `first` (cyclically for closed
 /// curves).
@@ -170,6 +172,13 @@ pub(crate) struct Window<const B: usize> {
     base: Vec<f64>,
     /// The outer blocks' part of a whole-curve chord step, in band order.
     yo: Vec<f64>,
+    /// The last step from where it started (see [`Window::take`]): the window's unknowns
+    /// and `t` there, `acc` there, the full step and each window block's full `δt`.
+    prev: Vec<f64>,
+    prev_t: Vec<f64>,
+    acc_prev: Vec<f64>,
+    z: Vec<f64>,
+    dts: Vec<f64>,
 }
 
 impl<const B: usize> Window<B> {
@@ -238,6 +247,38 @@ impl<const B: usize> Window<B> {
         self.assembled = false;
         self.factored = self.lin.factor();
         self.factored
+    }
+
+    /// Move the window's unknowns the fraction `s` of the step in `z` from where it started
+    /// (`prev`, `prev_t`, `acc_prev`), and the adjacent outer blocks with them. `false` if a
+    /// value is not finite or a `λ` leaves its range.
+    fn take<const D: usize>(&mut self, state: &mut super::State<D>, s: f64) -> bool {
+        let bb = B - 1;
+        let mut ok = true;
+        for i in 0..self.len {
+            let j = self.block(i);
+            for k in 0..bb {
+                *unknown_mut(state, j, k) = self.prev[i * bb + k] + s * self.z[i * bb + k];
+            }
+            let dt = s * self.dts[i];
+            state.t[j] = (self.prev_t[i] + dt).clamp(0.0, 1.0);
+            ok &= dt.is_finite() && lambda_valid(state.lam[j]);
+        }
+        for q in 0..Self::nq() {
+            self.acc[q] = self.acc_prev[q] + s * self.z[self.xcol(q)];
+        }
+        let nw = self.len * bb;
+        for ai in 0..self.adj.len() {
+            let j = self.adj[ai];
+            let Slot::Outer(p) = self.slot[j] else {
+                unreachable!("adjacent blocks are outer ones")
+            };
+            for k in 0..bb {
+                *unknown_mut(state, j, k) = self.base[nw + ai * bb + k] - self.response(p, k);
+            }
+            ok &= lambda_valid(state.lam[j]);
+        }
+        ok
     }
 
     /// Forget the window (the problem's structure changed, or its linearization failed).
@@ -427,7 +468,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         // Jacobian is assembled and factored anew at the current state.
         let mut chord = w.factored;
         let mut last = f64::INFINITY;
-        let ok = loop {
+        // The fraction of the last step taken, and whether it is a Newton step still on
+        // trial (its line search halves it until the residual falls).
+        let (mut damp, mut trial) = (1.0, false);
+        let ok = 'steps: loop {
             let mut worst = 0.0f64;
             let mut measure = |v: f64| {
                 worst = if v.is_nan() {
@@ -462,6 +506,20 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 if worst <= tol {
                     break true;
                 }
+                if trial && !(worst < last) {
+                    // The Newton step made things worse: half of it.
+                    loop {
+                        damp *= 0.5;
+                        if damp < MIN_DAMPING {
+                            break 'steps false;
+                        }
+                        if w.take(state, damp) {
+                            break;
+                        }
+                    }
+                    continue;
+                }
+                trial = false;
                 if !(worst <= CHORD_RATE * last) {
                     chord = false;
                     continue;
@@ -512,41 +570,83 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 }
             }
             w.lin.solve(&mut w.rhs);
-            // The step in global numbering: the window's, and the adjacent outer blocks'.
-            for i in 0..len {
-                let j = w.block(i);
-                w.delta[j * bb..(j + 1) * bb].copy_from_slice(&w.rhs[i * bb..(i + 1) * bb]);
-            }
-            for q in 0..nq {
-                w.acc[q] += w.rhs[w.xcol(q)];
-            }
-            let mut finite = true;
-            for (ai, &j) in w.adj.iter().enumerate() {
-                let Slot::Outer(p) = w.slot[j] else {
-                    unreachable!("adjacent blocks are outer ones")
-                };
-                for k in 0..bb {
-                    let now = w.base[(len + ai) * bb + k] - w.response(p, k);
-                    let x = unknown_mut(state, j, k);
-                    w.delta[j * bb + k] = now - *x;
-                    *x = now;
+            if chord {
+                // The step in global numbering: the window's, and the adjacent outer
+                // blocks'.
+                for i in 0..len {
+                    let j = w.block(i);
+                    w.delta[j * bb..(j + 1) * bb].copy_from_slice(&w.rhs[i * bb..(i + 1) * bb]);
                 }
-            }
-            for i in 0..len {
-                let j = w.block(i);
-                let (r, cond) = (&w.wres[i], &w.wcond[i]);
-                let dt = cond.dt(r[D + 1], &w.delta);
-                for k in 0..bb {
-                    *unknown_mut(state, j, k) += w.rhs[i * bb + k];
+                for q in 0..nq {
+                    w.acc[q] += w.rhs[w.xcol(q)];
                 }
-                state.t[j] = (state.t[j] + dt).clamp(0.0, 1.0);
-                finite &= dt.is_finite() && lambda_valid(state.lam[j]);
-            }
-            for &j in &w.adj {
-                finite &= lambda_valid(state.lam[j]);
-            }
-            if !finite {
-                break false;
+                let mut finite = true;
+                for (ai, &j) in w.adj.iter().enumerate() {
+                    let Slot::Outer(p) = w.slot[j] else {
+                        unreachable!("adjacent blocks are outer ones")
+                    };
+                    for k in 0..bb {
+                        let now = w.base[(len + ai) * bb + k] - w.response(p, k);
+                        let x = unknown_mut(state, j, k);
+                        w.delta[j * bb + k] = now - *x;
+                        *x = now;
+                    }
+                }
+                for i in 0..len {
+                    let j = w.block(i);
+                    let (r, cond) = (&w.wres[i], &w.wcond[i]);
+                    let dt = cond.dt(r[D + 1], &w.delta);
+                    for k in 0..bb {
+                        *unknown_mut(state, j, k) += w.rhs[i * bb + k];
+                    }
+                    state.t[j] = (state.t[j] + dt).clamp(0.0, 1.0);
+                    finite &= dt.is_finite() && lambda_valid(state.lam[j]);
+                }
+                for &j in &w.adj {
+                    finite &= lambda_valid(state.lam[j]);
+                }
+                if !finite {
+                    break false;
+                }
+            } else {
+                // A Newton step, with a line search: the full step in global numbering (the
+                // window's, and the adjacent outer blocks' response) and each window block's
+                // `δt` from its peak row, from where it starts; halved while it takes a `λ`
+                // out of its range, and then while the residual it leads to (measured by
+                // the next chord step) is not below the one it started from.
+                for i in 0..len {
+                    let j = w.block(i);
+                    w.delta[j * bb..(j + 1) * bb].copy_from_slice(&w.rhs[i * bb..(i + 1) * bb]);
+                }
+                for &j in &w.adj {
+                    let Slot::Outer(p) = w.slot[j] else {
+                        unreachable!("adjacent blocks are outer ones")
+                    };
+                    for k in 0..bb {
+                        w.delta[j * bb + k] = -w.response_to(p, k, |q| w.rhs[w.xcol(q)]);
+                    }
+                }
+                w.dts.clear();
+                for i in 0..len {
+                    let dt = w.wcond[i].dt(w.wres[i][D + 1], &w.delta);
+                    w.dts.push(dt);
+                }
+                w.prev.clear();
+                w.prev_t.clear();
+                for i in 0..len {
+                    let j = w.block(i);
+                    w.prev.extend((0..bb).map(|k| unknown(state, j, k)));
+                    w.prev_t.push(state.t[j]);
+                }
+                w.acc_prev.clone_from(&w.acc);
+                w.z.clone_from(&w.rhs);
+                (damp, trial) = (1.0, true);
+                while !w.take(state, damp) {
+                    damp *= 0.5;
+                    if damp < MIN_DAMPING {
+                        break 'steps false;
+                    }
+                }
             }
             last = worst;
             chord = w.factored;
@@ -940,6 +1040,45 @@ mod tests {
                 assert!((a.lam[j] - b.lam[j]).abs() < 1e-9, "λ {j}");
                 assert!((a.t[j] - b.t[j]).abs() < 1e-8, "t {j}");
             }
+        }
+    }
+
+    /// On a densely sampled smooth loop (2 000 points) a move of a few percent of the
+    /// points' spacing makes the window's first Newton step overshoot: in full it takes a
+    /// `λ` out of its range, and without the line search the window gives up. Halved until
+    /// the residual falls, the re-solve converges on the window, to the cold solution.
+    #[test]
+    fn window_newton_steps_search_along_the_line() {
+        let n = 2000;
+        let p: Vec<[f64; 2]> = (0..n)
+            .map(|i| {
+                let th = i as f64 / n as f64 * std::f64::consts::TAU;
+                let r = 0.45 * (1.0 + 0.1 * (5.0 * th).sin());
+                [r * th.cos(), r * th.sin()]
+            })
+            .collect();
+        let mut prob = Problem {
+            closed: true,
+            ghost: [p[0], p[n - 1]],
+            p,
+            basis: vec![Basis::Cubic(CubicEk::new(0.85)); n],
+        };
+        let set = Settings {
+            tolerance: 1e-12,
+            max_iterations: 200,
+            newton_chords: true,
+        };
+        let mut ws = cold::<2, 4>(&prob, &set);
+        let j = n / 3;
+        let d = [4.5e-5, -2.25e-5];
+        prob.p[j] = [prob.p[j][0] + d[0], prob.p[j][1] + d[1]];
+        ws.state.c[j] = [ws.state.c[j][0] + d[0], ws.state.c[j][1] + d[1]];
+        let out = ws.solve_window(&prob, &set, Edit::of(true, n, &[j]).unwrap(), false);
+        let out = out.expect("the window re-solve gives up");
+        assert!(out.converged, "{out:?}");
+        let reference = cold::<2, 4>(&prob, &set);
+        for (a, b) in ws.state.c.iter().zip(&reference.state.c) {
+            assert!((a[0] - b[0]).abs().max((a[1] - b[1]).abs()) < 1e-10);
         }
     }
 
