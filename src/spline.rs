@@ -747,20 +747,21 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         let edit = moved
             .get(..count)
             .and_then(|m| Edit::of(self.prob.closed, self.prob.p.len(), m));
-        self.ws.set_edit(
-            edit,
-            self.frame.size != old_frame.size,
-            self.frame != old_frame,
-        );
+        let reframed = self.frame != old_frame;
+        self.ws
+            .set_edit(edit, self.frame.size != old_frame.size, reframed);
         // Carry the previous unknowns into the new frame, moving each control point with
         // its input point (in the same frame, only those of moved points change).
         let off = if self.prob.closed { 0 } else { 1 };
         let st = &mut self.ws.state;
-        if self.frame == old_frame {
+        if !reframed {
             for (j, c) in st.c.iter_mut().enumerate() {
-                let (new, old) = (self.points[j + off], old_points[j + off]);
-                if new != old {
-                    let (new, old) = (self.frame.to_local(new), self.frame.to_local(old));
+                if self.points[j + off] != old_points[j + off] {
+                    // `local` holds the new points in this frame.
+                    let (new, old) = (
+                        self.local[j + off],
+                        self.frame.to_local(old_points[j + off]),
+                    );
                     *c = core::array::from_fn(|k| c[k] + (new[k] - old[k]));
                 }
             }

@@ -17,10 +17,14 @@
 //! kept: the steps are chord steps (a residual and a back substitution each), the first one
 //! with the factors of the previous re-solve, and the Jacobian is assembled and factored
 //! anew (a Newton step) only where a chord step does not shrink the residual by
-//! [`CHORD_RATE`]. Each step costs `O(window)`, whatever the curve's length.
+//! [`CHORD_RATE`]. A Newton step searches along its line: it is halved while it takes a `λ`
+//! out of its range, and while the residual it leads to is not below the one it started
+//! from. Each step costs `O(window)`, whatever the curve's length.
 //!
 //! At the end one `O(n)` pass moves the outer blocks (`c`, `λ` by `X`, `t` from their peak
-//! rows) and measures the residual of the whole curve, which decides convergence. Where the
+//! rows) and measures the residual of the whole curve, which decides convergence: the
+//! window's blocks as its last step measured them, and of the outer blocks those whose
+//! stencil the pass changed (the others keep the measure of the previous re-solve). Where the
 //! outer blocks' linearization is not accurate enough (long curves, whose solutions fall off
 //! more slowly with distance), chord steps on the whole curve follow, by block elimination
 //! with the two factors at hand: `y = J_OO⁻¹ r_O`, `(J_WW - J_WO X) δ_W = r_W - J_WO y`,
@@ -156,8 +160,8 @@ pub(crate) struct Window<const B: usize> {
     /// The row scales of the window's blocks in the factored Jacobian.
     wscale: Vec<[f64; 2]>,
     /// The scales of the window's blocks' convergence measures (see
-    /// [`Workspace::check_scales`]), computed at the first step of a re-solve and kept for
-    /// its steps; the whole curve's final test computes its own.
+    /// [`Workspace::check_scales`]), computed at the first step of a re-solve and at each
+    /// Newton step, and kept for the chord steps in between.
     wcheck: Vec<[f64; 2]>,
     /// The convergence measures of the window's blocks, as last evaluated.
     wmeasure: Vec<[f64; B]>,
@@ -570,13 +574,13 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 }
             }
             w.lin.solve(&mut w.rhs);
+            // The step in global numbering: the window's here, the adjacent outer blocks'
+            // below.
+            for i in 0..len {
+                let j = w.block(i);
+                w.delta[j * bb..(j + 1) * bb].copy_from_slice(&w.rhs[i * bb..(i + 1) * bb]);
+            }
             if chord {
-                // The step in global numbering: the window's, and the adjacent outer
-                // blocks'.
-                for i in 0..len {
-                    let j = w.block(i);
-                    w.delta[j * bb..(j + 1) * bb].copy_from_slice(&w.rhs[i * bb..(i + 1) * bb]);
-                }
                 for q in 0..nq {
                     w.acc[q] += w.rhs[w.xcol(q)];
                 }
@@ -609,15 +613,11 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     break false;
                 }
             } else {
-                // A Newton step, with a line search: the full step in global numbering (the
-                // window's, and the adjacent outer blocks' response) and each window block's
-                // `δt` from its peak row, from where it starts; halved while it takes a `λ`
-                // out of its range, and then while the residual it leads to (measured by
-                // the next chord step) is not below the one it started from.
-                for i in 0..len {
-                    let j = w.block(i);
-                    w.delta[j * bb..(j + 1) * bb].copy_from_slice(&w.rhs[i * bb..(i + 1) * bb]);
-                }
+                // A Newton step, with a line search: the full step (the adjacent outer
+                // blocks' response, and each window block's `δt` from its peak row), from
+                // where it starts; halved while it takes a `λ` out of its range, and then
+                // while the residual it leads to (measured by the next chord step) is not
+                // below the one it started from.
                 for &j in &w.adj {
                     let Slot::Outer(p) = w.slot[j] else {
                         unreachable!("adjacent blocks are outer ones")
