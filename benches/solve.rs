@@ -1,11 +1,12 @@
-//! Solver benchmarks: the paper's bear drawing cold (κ and εκ), warm re-solves after a point
-//! moves (the interactive case), and scaling to 100 000 points.
+//! Solver benchmarks: the paper's bear drawing cold (κ and εκ; curve by curve, and as one
+//! batch over rayon's pool), warm re-solves after a point moves (the interactive case), and
+//! scaling to 100 000 points.
 //!
 //! Run with `cargo bench --all-features --bench solve`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use kappa::fit::{FitMethod, FitOptions};
-use kappa::{builtin_design, Design, Scheme, Shape, Solver, Spline};
+use kappa::{builtin_design, BatchCurve, BatchSolver, Design, Scheme, Shape, Solver, Spline};
 use kurbo::Point;
 use std::hint::black_box;
 
@@ -42,6 +43,24 @@ fn bear(c: &mut Criterion) {
             b.iter(|| {
                 for ((pts, closed), s) in curves.iter().zip(solvers.iter_mut()) {
                     black_box(s.solve(pts, *closed, scheme, &shape).unwrap());
+                }
+            })
+        });
+    }
+    // The same curves as one batch, spread over the threads of rayon's pool.
+    for (label, scheme, shape) in [
+        ("kappa_batch", Scheme::Kappa, Shape::Neutral),
+        ("ek_cubic_0.85_batch", Scheme::EkCubic, Shape::Global(0.85)),
+    ] {
+        let batch: Vec<BatchCurve<'_, Point>> = curves
+            .iter()
+            .map(|(pts, closed)| BatchCurve::new(pts, *closed, &shape))
+            .collect();
+        g.bench_function(label, |b| {
+            let mut solver = BatchSolver::new();
+            b.iter(|| {
+                for spline in solver.solve(&batch, scheme) {
+                    black_box(spline.unwrap());
                 }
             })
         });

@@ -108,6 +108,7 @@
 
 pub mod analysis;
 mod basis;
+mod batch;
 mod bspline;
 #[cfg(feature = "serde")]
 mod design;
@@ -137,6 +138,7 @@ pub mod trig;
 struct ReadmeDoctests;
 
 pub use basis::Extremum;
+pub use batch::{BatchCurve, BatchSolver, BatchSolver3, BatchSolverN, MIN_PARALLEL_SEGMENTS};
 pub use bspline::{BSpline, BSpline3, BSplineCurvatureMax, BSplinePathElements, BSplinePoint};
 #[cfg(feature = "serde")]
 pub use design::{Design, DesignCurve};

@@ -29,3 +29,42 @@ where
         (a(), b())
     }
 }
+
+/// How many threads [`each_worker`] can use: rayon's pool size with the `parallel` feature
+/// (the global pool, or the pool the caller runs on), 1 without it.
+#[inline]
+pub(crate) fn threads() -> usize {
+    #[cfg(feature = "parallel")]
+    {
+        rayon::current_num_threads().max(1)
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        1
+    }
+}
+
+/// Run `work` on each of `workers`: the first on the calling thread, the others as tasks
+/// on rayon's pool, all at once; returns when every one has finished. Without the
+/// `parallel` feature, or with one worker, one after the other on the calling thread.
+///
+/// The calling thread does not wait for the pool to pick the tasks up: work shared through
+/// a counter (as [`crate::batch`] does) is drained by whoever is running.
+pub(crate) fn each_worker<W: Send>(workers: &mut [W], work: impl Fn(&mut W) + Sync) {
+    #[cfg(feature = "parallel")]
+    if let Some((first, rest)) = workers.split_first_mut() {
+        if !rest.is_empty() {
+            let work = &work;
+            rayon::in_place_scope(|s| {
+                for w in rest {
+                    s.spawn(move |_| work(w));
+                }
+                work(first);
+            });
+            return;
+        }
+    }
+    for w in workers {
+        work(w);
+    }
+}

@@ -667,10 +667,10 @@ fn cli_bench() {
     assert!(out.status.success(), "{}", stderr(&out));
     let table: Value = serde_json::from_str(&stdout(&out)).unwrap();
     let rows = table.as_array().unwrap();
-    assert_eq!(rows.len(), 3);
+    assert_eq!(rows.len(), 5);
     let bear: Vec<&Value> = rows.iter().filter(|r| r["case"] == "bear").collect();
-    assert_eq!(bear.len(), 2);
-    for row in bear {
+    assert_eq!(bear.len(), 4);
+    for row in &bear {
         assert_eq!(row["curves"], 28);
         assert_eq!(row["points"], 96);
         assert!(row["median_us"].as_f64().unwrap() > 0.0);
@@ -679,6 +679,14 @@ fn cli_bench() {
     }
     assert_eq!(rows[1]["scheme"], "ek-cubic");
     assert_eq!(rows[1]["shape"], 0.85);
-    assert_eq!(rows[2]["case"], "warm_move_one_point_50");
+    // Curve by curve on one thread, then the same curves as one batch: the same solves.
+    assert_eq!(rows[0]["threads"], 1);
+    assert_eq!(rows[1]["threads"], 1);
+    assert!(rows[2]["threads"].as_u64().unwrap() >= 1);
+    assert_eq!(rows[2]["scheme"], "kappa");
+    assert_eq!(rows[3]["scheme"], "ek-cubic");
+    assert_eq!(rows[2]["iterations"], rows[0]["iterations"]);
+    assert_eq!(rows[3]["iterations"], rows[1]["iterations"]);
+    assert_eq!(rows[4]["case"], "warm_move_one_point_50");
     assert_error(&["bench", "--case", "unicorn"], "");
 }

@@ -6,7 +6,7 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Args;
-use kappa::{Scheme, Shape, SolveOptions, Solver, Spline};
+use kappa::{BatchCurve, BatchSolver, Scheme, Shape, SolveOptions, Solver, Spline};
 use kurbo::{Point, Vec2};
 use serde::Serialize;
 
@@ -43,10 +43,12 @@ const CASES: [&str; 12] = [
     long_about = "Time the solver on the built-in benchmark set and print a JSON array of \
         median timings in microseconds, one object per case:\n  \
         {\"case\": \"bear\", \"scheme\": \"kappa\", \"shape\": 0.85 (ek-cubic only), \
-        \"curves\": 28, \"points\": 96, \"repeat\": 31, \"median_us\": 12.3, \"iterations\": 150, \"converged\": true}\n\n\
+        \"curves\": 28, \"points\": 96, \"threads\": 1, \"repeat\": 31, \"median_us\": 12.3, \"iterations\": 150, \"converged\": true}\n\n\
         Cases: each drawing of the εκ paper (bear, bird, deer, dinosaur, elephant, plane, \
-        pumpkin, rabbit, rose) solved cold, curve by curve, as a κ-curve and as an εκ-curve \
-        with a = 0.85 (median_us: all curves together; iterations: their sum); \
+        pumpkin, rabbit, rose) solved cold, curve by curve on one thread, as a κ-curve and \
+        as an εκ-curve with a = 0.85 (median_us: all curves together; iterations: their \
+        sum), then the same as one batch spread over the threads of the pool (\"threads\"; \
+        RAYON_NUM_THREADS sets the pool's size); \
         warm_move_one_point_50: re-solving a 50-point κ star loop (radii alternating 100 and \
         90) after point 10 moved by (0.8, -0.5), from the previous solution, and re-solving \
         after moving it back (median_us: per re-solve, half the time of the pair; \
@@ -79,6 +81,8 @@ struct Row {
     shape: Option<f64>,
     curves: usize,
     points: usize,
+    /// Threads the curves were spread over (1: one after the other on one thread).
+    threads: usize,
     repeat: usize,
     median_us: f64,
     iterations: usize,
@@ -103,6 +107,7 @@ impl RunInfo {
 
 /// The timing of a case.
 struct Timing {
+    threads: usize,
     repeat: usize,
     median_us: f64,
     iterations: usize,
@@ -117,6 +122,7 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
         accept_unconverged: true,
         ..SolveOptions::default()
     });
+    let mut batcher = BatchSolver::with_options(solver.options());
     let mut rows = Vec::new();
     for name in PAPER_DRAWINGS.into_iter().filter(|n| wanted(n)) {
         let design = builtin::load(name)?;
@@ -141,6 +147,30 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
                 Ok(info)
             })
             .map_err(|f| f.context(name))?;
+            rows.push(row(name, scheme, shape, curves.len(), points, timing));
+        }
+        // The same curves as one batch, spread over the threads of the pool.
+        for (scheme, shape) in [(Scheme::Kappa, None), (Scheme::EkCubic, Some(EK_SHAPE))] {
+            let shape_arg = shape.map_or(Shape::Neutral, Shape::Global);
+            let batch: Vec<BatchCurve<'_, Point>> = curves
+                .iter()
+                .map(|(pts, closed)| BatchCurve::new(pts, *closed, &shape_arg))
+                .collect();
+            let threads = batcher.threads_for(&batch);
+            let mut timing = measure(repeat, || {
+                let mut info = RunInfo {
+                    iterations: 0,
+                    converged: true,
+                };
+                for spline in black_box(batcher.solve(&batch, scheme)) {
+                    let spline = spline?;
+                    info.iterations += spline.iterations();
+                    info.converged &= spline.converged();
+                }
+                Ok(info)
+            })
+            .map_err(|f| f.context(name))?;
+            timing.threads = threads;
             rows.push(row(name, scheme, shape, curves.len(), points, timing));
         }
     }
@@ -226,6 +256,7 @@ fn measure(
         0.5 * (times[mid - 1] + times[mid])
     };
     Ok(Timing {
+        threads: 1,
         repeat,
         // Nanosecond resolution is all `Instant` offers.
         median_us: (median_us * 1e3).round() / 1e3,
@@ -249,6 +280,7 @@ fn row(
         shape,
         curves,
         points,
+        threads: timing.threads,
         repeat: timing.repeat,
         median_us: timing.median_us,
         iterations: timing.iterations,
