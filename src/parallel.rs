@@ -1,4 +1,5 @@
-//! Fork–join for the work on long curves: two halves side by side.
+//! Fork–join for the work on long curves (two halves side by side), and the threads of a
+//! batch of curves ([`each_worker`]).
 //!
 //! With the `parallel` feature (on by default) [`join`] runs its two closures on rayon's
 //! thread pool; without it, with a pool of one thread, or where threads are unavailable (as
