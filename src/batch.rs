@@ -1,17 +1,16 @@
 //! Many curves solved cold in one call: the curves of a drawing, the contours of a glyph.
 //!
-//! Each curve is an independent system (seed 000 §3 solves one curve at a time), so a
-//! batch spreads them over the threads of rayon's pool (feature `parallel`): the calling
-//! thread and the pool's other threads take the next unsolved curve, the largest first,
-//! until none is left. Every thread has a [`SolverN`] of its own, kept by the
-//! [`BatchSolverN`] across calls, so repeated batches allocate only their results. A curve's
-//! result does not depend on the thread that solved it or on what that thread solved
-//! before: a cold solve starts from its input alone, and the batch returns exactly what
-//! [`SolverN::solve`] returns for each curve.
+//! Each curve is an independent system, so a batch spreads them over the threads of
+//! rayon's pool (feature `parallel`): the calling thread and the pool's other threads take
+//! the next unsolved curve, the largest first, until none is left. Every thread has a
+//! [`SolverN`] of its own, kept by the [`BatchSolverN`] across calls, so repeated batches
+//! allocate little more than their results. A curve's result does not depend on the thread
+//! that solved it or on what that thread solved before: a cold solve starts from its input
+//! alone, and the batch returns exactly what [`SolverN::solve`] returns for each curve.
 //!
 //! Small batches (fewer than [`MIN_PARALLEL_SEGMENTS`] segments in all) stay on the
-//! calling thread: handing work to another thread costs a few microseconds, about one
-//! small curve's solve.
+//! calling thread: waking another thread can cost a few microseconds, about one small
+//! curve's solve.
 
 use core::sync::atomic::{AtomicUsize, Ordering};
 
