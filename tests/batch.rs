@@ -7,6 +7,7 @@ use kappa::{
     BUILTIN_DESIGNS,
 };
 use kurbo::Point;
+use proptest::prelude::*;
 
 #[test]
 fn batches_of_every_drawing_match_one_solve_per_curve() {
@@ -76,4 +77,61 @@ fn rayon_threads() -> usize {
                 .and_then(|s| s.parse().ok())
                 .unwrap_or(1),
         )
+}
+
+/// A random curve for a batch: 2–12 points on a jagged loop of random size and place,
+/// closed or open, sometimes spoiled (a repeated point, a NaN, too few points) so that the
+/// batch also carries errors.
+fn random_curve() -> impl Strategy<Value = (Vec<Point>, bool)> {
+    (
+        2usize..12,
+        any::<bool>(),
+        0.5f64..500.0,
+        -1000.0f64..1000.0,
+        0u8..8,
+        prop::collection::vec(0.6f64..1.0, 12),
+    )
+        .prop_map(|(n, closed, r, shift, spoil, radii)| {
+            let mut pts: Vec<Point> = (0..n)
+                .map(|i| {
+                    let th = i as f64 / n as f64 * std::f64::consts::TAU;
+                    let rr = r * radii[i];
+                    Point::new(shift + rr * th.cos(), rr * th.sin())
+                })
+                .collect();
+            match spoil {
+                0 if n > 2 => pts[1] = pts[0],
+                1 => pts[n - 1].x = f64::NAN,
+                _ => {}
+            }
+            (pts, closed)
+        })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// Any batch (valid and invalid curves mixed, any sizes, in any order) gives, curve for
+    /// curve and in its order, what one solve per curve gives.
+    #[test]
+    fn random_batches_match_one_solve_per_curve(
+        curves in prop::collection::vec(random_curve(), 0..24),
+        scheme_i in 0usize..2,
+    ) {
+        let (scheme, shape) = [
+            (Scheme::Kappa, Shape::Neutral),
+            (Scheme::EkCubic, Shape::Global(0.8)),
+        ][scheme_i].clone();
+        let options = SolveOptions { accept_unconverged: true, ..SolveOptions::default() };
+        let batch: Vec<BatchCurve<'_, Point>> = curves
+            .iter()
+            .map(|(p, c)| BatchCurve::new(p, *c, &shape))
+            .collect();
+        let got = BatchSolver::with_options(options).solve(&batch, scheme);
+        prop_assert_eq!(got.len(), curves.len());
+        let mut one = Solver::with_options(options);
+        for ((p, c), g) in curves.iter().zip(&got) {
+            prop_assert_eq!(g, &one.solve(p, *c, scheme, &shape));
+        }
+    }
 }
