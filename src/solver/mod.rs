@@ -562,6 +562,10 @@ pub(crate) struct Workspace<const D: usize, const B: usize> {
     trial_res: Vec<[f64; B]>,
     trial_check: Vec<[f64; B]>,
     trial_scale: Vec<[f64; 2]>,
+    /// What the line search measured of its trial state besides `trial_res` (curves cut in
+    /// no halves), and of the state it was swapped in as: see [`Workspace::refreeze`].
+    trial_raw: Vec<Raw>,
+    raw: Vec<Raw>,
     step: Vec<f64>,
     /// Right-hand side and solution of the condensed system (`B - 1` unknowns per block).
     reduced: Vec<f64>,
@@ -674,7 +678,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         if self.lin_state == LinState::Factored
             && self.fact_scale.len() == n
             && self.res.len() == n
-            && self.chord_steps(prob, set, CHORD_CONTRACTION, &mut out)
+            && self.chord_steps(prob, set, CHORD_CONTRACTION, None, &mut out)
         {
             return out;
         }
@@ -696,16 +700,22 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
 
     /// Chord steps from the current state with the stored factorization while each one
     /// shrinks the merit by `contraction` or better; the state is left at the last accepted
-    /// step. Counts the steps in `out`; `true` (with `out` filled in) if converged.
+    /// step. `start` is the merit of the current state with the factorization's row scales
+    /// where `res` and `check` already hold them (measured here otherwise). Counts the
+    /// steps in `out`; `true` (with `out` filled in) if converged.
     fn chord_steps(
         &mut self,
         prob: &Problem<D>,
         set: &Settings,
         contraction: f64,
+        start: Option<f64>,
         out: &mut Outcome,
     ) -> bool {
         self.trial.clone_from(&self.state);
-        let mut phi = self.residual_frozen(prob, set.tolerance);
+        let mut phi = match start {
+            Some(phi) => phi,
+            None => self.residual_frozen(prob, set.tolerance),
+        };
         for _ in 0..MAX_CHORD {
             if self.max_residual() <= set.tolerance {
                 out.converged = true;
@@ -808,7 +818,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         debug_assert!(scale.len() == st.t.len() && res.len() == st.t.len());
         debug_assert_eq!(check.len(), st.t.len());
         let Some(split) = Split::of(prob.closed, st.t.len()) else {
-            return Self::residuals_from::<FROZEN>(prob, st, 0, scale, res, check, tol);
+            return Self::residuals_from::<FROZEN>(prob, st, 0, scale, res, check, tol, &mut []);
         };
         let cuts = split.cuts();
         let [s0, s1, s2, s3] = split4(scale, cuts);
@@ -822,12 +832,16 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             (j3, s3, r3, c3),
         ];
         let [p0, p1, p2, p3] = Split::each(pieces, |(j, s, r, c)| {
-            Self::residuals_from::<FROZEN>(prob, st, j, s, r, c, tol)
+            Self::residuals_from::<FROZEN>(prob, st, j, s, r, c, tol, &mut [])
         });
         ((p0 + p1) + p2) + p3
     }
 
     /// [`residuals`](Self::residuals) of the blocks `j0..j0 + res.len()`.
+    ///
+    /// With `raw` as long as `res` (empty otherwise), also what [`refreeze`](Self::refreeze)
+    /// needs of each block.
+    #[allow(clippy::too_many_arguments)]
     fn residuals_from<const FROZEN: bool>(
         prob: &Problem<D>,
         st: &State<D>,
@@ -836,6 +850,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         res: &mut [[f64; B]],
         check: &mut [[f64; B]],
         tol: f64,
+        raw: &mut [Raw],
     ) -> f64 {
         let mut phi = 0.0;
         for (i, ((scale, res), check)) in scale.iter_mut().zip(res).zip(check).enumerate() {
@@ -843,10 +858,57 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             let loc = Self::local(prob, st, j);
             let mut g2 = 0.0;
             let mut ignore = |_: usize, _: Var, _: f64| {};
-            let r = Self::eval_block::<false, FROZEN>(prob, j, &loc, scale, &mut g2, &mut ignore);
+            let mut rw = [0.0; 2];
+            let r = Self::eval_block_raw::<false, FROZEN>(
+                prob,
+                j,
+                &loc,
+                scale,
+                &mut g2,
+                &mut rw,
+                &mut ignore,
+            );
             phi += r.iter().map(|v| 0.5 * v * v).sum::<f64>();
             *res = r;
-            *check = Self::check_row(r, g2, &loc, tol);
+            let scales = Self::check_scales(&loc, tol);
+            *check = Self::check_scaled(r, g2, scales);
+            if let Some(out) = raw.get_mut(i) {
+                *out = Raw {
+                    joint: rw[0],
+                    stationarity: rw[1],
+                    g2,
+                    scales,
+                };
+            }
+        }
+        phi
+    }
+
+    /// The residual, convergence measures and merit of the current state with the row
+    /// scales of the stored factorization, from what the line search measured of it
+    /// (`raw`, kept by [`trial_merit`](Self::trial_merit) and swapped in with the state):
+    /// the same numbers as [`residual_frozen`](Self::residual_frozen), bit for bit, without
+    /// evaluating the blocks again. Only the joint and peak rows depend on the row scales;
+    /// the interpolation rows are kept as they are.
+    fn refreeze(&mut self) -> f64 {
+        let mut phi = 0.0;
+        let blocks = self.res.iter_mut().zip(&mut self.check).zip(&self.raw);
+        for (j, ((r, check), raw)) in blocks.enumerate() {
+            let f = self.fact_scale[j];
+            r[D] = raw.joint * f[0];
+            // As in `eval_block_raw`: the complementarity switch with the frozen scale.
+            let t = self.state.t[j];
+            let g = raw.stationarity * f[1];
+            let z = t - g;
+            r[D + 1] = if z <= 0.0 {
+                t - 0.0
+            } else if z >= 1.0 {
+                t - 1.0
+            } else {
+                g
+            };
+            phi += r.iter().map(|v| 0.5 * v * v).sum::<f64>();
+            *check = Self::check_scaled(*r, raw.g2, raw.scales);
         }
         phi
     }
@@ -856,6 +918,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         core::mem::swap(&mut self.res, &mut self.trial_res);
         core::mem::swap(&mut self.check, &mut self.trial_check);
         core::mem::swap(&mut self.scale, &mut self.trial_scale);
+        core::mem::swap(&mut self.raw, &mut self.trial_raw);
     }
 
     /// Size the per-block buffers of the Newton steps for `n` blocks (no-op once sized).
@@ -866,6 +929,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         self.trial_res.resize(n, [0.0; B]);
         self.trial_check.resize(n, [0.0; B]);
         self.trial_scale.resize(n, [1.0; 2]);
+        self.trial_raw.resize(n, Raw::default());
+        self.raw.resize(n, Raw::default());
         self.step.resize(n * B, 0.0);
         self.cond.resize(n, Condensed::default());
     }
@@ -922,8 +987,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     continue;
                 }
                 // Chord steps with this factorization while they contract well: much
-                // cheaper than assembling and factoring again on long curves.
-                if self.chord_steps(prob, set, NEWTON_CHORD_CONTRACTION, &mut out) {
+                // cheaper than assembling and factoring again on long curves. Their first
+                // residual is the line search's, rescaled (curves cut in no halves).
+                let start = (n < split_min()).then(|| self.refreeze());
+                if self.chord_steps(prob, set, NEWTON_CHORD_CONTRACTION, start, &mut out) {
                     // The factors may come from an early iterate: a warm re-solve from
                     // here assembles the Jacobian at its own start instead.
                     self.lin_state = LinState::Stale;
@@ -1289,14 +1356,28 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// `trial_res`, `trial_check` and `trial_scale` as [`assemble`](Self::assemble) would
     /// at the trial state.
     fn trial_merit(&mut self, prob: &Problem<D>, tol: f64) -> f64 {
-        let phi = Self::residuals::<false>(
-            prob,
-            &self.trial,
-            &mut self.trial_scale,
-            &mut self.trial_res,
-            &mut self.trial_check,
-            tol,
-        );
+        let phi = if self.n() < split_min() {
+            // Also what `refreeze` needs, should the state be accepted.
+            Self::residuals_from::<false>(
+                prob,
+                &self.trial,
+                0,
+                &mut self.trial_scale,
+                &mut self.trial_res,
+                &mut self.trial_check,
+                tol,
+                &mut self.trial_raw,
+            )
+        } else {
+            Self::residuals::<false>(
+                prob,
+                &self.trial,
+                &mut self.trial_scale,
+                &mut self.trial_res,
+                &mut self.trial_check,
+                tol,
+            )
+        };
         if phi.is_nan() {
             f64::INFINITY
         } else {
@@ -1442,6 +1523,23 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         g2: &mut f64,
         sink: &mut impl FnMut(usize, Var, f64),
     ) -> [f64; B] {
+        let mut raw = [0.0; 2];
+        Self::eval_block_raw::<JAC, FROZEN>(prob, j, l, scale, g2, &mut raw, sink)
+    }
+
+    /// [`eval_block`](Self::eval_block), also giving the two values its scaled rows are
+    /// made of: the joint row before its scale and the stationarity before its scale
+    /// (what [`Raw`] keeps).
+    #[inline(always)]
+    fn eval_block_raw<const JAC: bool, const FROZEN: bool>(
+        prob: &Problem<D>,
+        j: usize,
+        l: &Local<D>,
+        scale: &mut [f64; 2],
+        g2: &mut f64,
+        raw: &mut [f64; 2],
+        sink: &mut impl FnMut(usize, Var, f64),
+    ) -> [f64; B] {
         let n = prob.p.len();
         let basis = prob.basis[j];
         let w = basis.weights(l.t);
@@ -1460,6 +1558,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let st = Stationarity::new(&w);
         let (rr, rs, ss) = (dot(r, r), dot(r, s), dot(s, s));
         let rt = st.c[0] * rr + st.c[1] * rs + st.c[2] * ss;
+        raw[1] = rt;
         let mag = st.c[0].abs() * rr + st.c[1].abs() * rs.abs() + st.c[2].abs() * ss;
         let sc_t = if FROZEN {
             scale[1]
@@ -1504,6 +1603,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 scale[0] = 1.0;
             }
         }
+        raw[0] = res[D];
         res[D] *= scale[0];
         if JAC {
             // Interpolation rows.
@@ -1697,6 +1797,21 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             *d = dj;
         }
     }
+}
+
+/// What the residual of a block is made of besides its interpolation rows, kept by the line
+/// search so that [`Workspace::refreeze`] can rescale the joint and peak rows to other row
+/// scales without evaluating the block again.
+#[derive(Clone, Copy, Debug, Default)]
+struct Raw {
+    /// The joint row before its scale.
+    joint: f64,
+    /// The stationarity before its scale (the peak row is `t - clamp(t - g)` of it scaled).
+    stationarity: f64,
+    /// The relative |κ| mismatch of the convergence test.
+    g2: f64,
+    /// The convergence test's scales of the joint and peak rows.
+    scales: [f64; 2],
 }
 
 /// The elimination of `t_j` from block row `j` (static condensation): `t_j` appears only in
@@ -2330,6 +2445,73 @@ mod linear_tests {
                 (a - b).abs() <= 1e-8 * (1.0 + b.abs()),
                 "closed={closed} n={n}: {a} vs {b}"
             );
+        }
+    }
+
+    /// After an accepted Newton step, the residual rescaled from the line search's
+    /// measure equals the one evaluated with the factorization's row scales, bit for bit.
+    fn check_refreeze<const D: usize, const B: usize>(closed: bool, n: usize, basis: Basis) {
+        let p: Vec<[f64; D]> = (0..n)
+            .map(|i| {
+                let th = i as f64 / n as f64 * std::f64::consts::TAU;
+                // Jagged and without symmetry (a symmetric start can be a solution).
+                let r = if i % 2 == 0 { 1.0 } else { 0.8 } + 0.1 * (3.0 * th + 0.5).sin();
+                core::array::from_fn(|k| match k {
+                    0 => r * th.cos(),
+                    1 => r * th.sin(),
+                    _ => 0.1 * (2.0 * th).cos(),
+                })
+            })
+            .collect();
+        let prob = Problem {
+            closed,
+            p,
+            ghost: [[1.5; D], [-1.5; D]],
+            basis: vec![basis; n],
+        };
+        let tol = 1e-12;
+        let mut ws = Workspace::<D, B>::default();
+        ws.cold_start(&prob);
+        ws.trial.clone_from(&ws.state);
+        ws.size_buffers(n);
+        for _ in 0..3 {
+            ws.classic_iteration(&prob, true);
+        }
+        let mut accepted = 0;
+        for _ in 0..3 {
+            ws.lin.reset(closed, n, B - 1);
+            let phi = ws.assemble(&prob, tol);
+            ws.fact_scale.clone_from(&ws.scale);
+            if ws.max_residual() <= tol || !ws.newton_step(&prob, phi, tol) {
+                break;
+            }
+            accepted += 1;
+            let fast = ws.refreeze();
+            let (res, check) = (ws.res.clone(), ws.check.clone());
+            let slow = ws.residual_frozen(&prob, tol);
+            assert_eq!(fast.to_bits(), slow.to_bits(), "closed={closed} n={n}");
+            for (a, b) in res.iter().flatten().zip(ws.res.iter().flatten()) {
+                assert_eq!(a.to_bits(), b.to_bits(), "closed={closed} n={n}");
+            }
+            for (a, b) in check.iter().flatten().zip(ws.check.iter().flatten()) {
+                assert_eq!(a.to_bits(), b.to_bits(), "closed={closed} n={n}");
+            }
+        }
+        assert!(
+            accepted > 0,
+            "closed={closed} n={n}: no Newton step to check"
+        );
+    }
+
+    #[test]
+    fn refrozen_residual_matches_a_frozen_evaluation() {
+        let cubic = Basis::Cubic(crate::basis::CubicEk::new(0.8));
+        for basis in [Basis::QUADRATIC, cubic] {
+            for &n in &[3, 4, 5, 9, 17] {
+                check_refreeze::<2, 4>(true, n, basis);
+                check_refreeze::<2, 4>(false, n, basis);
+                check_refreeze::<3, 5>(true, n, basis);
+            }
         }
     }
 

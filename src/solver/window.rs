@@ -802,6 +802,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     &mut self.res[run.clone()],
                     &mut self.check[run.clone()],
                     tol,
+                    &mut [],
                 );
                 j = run.end;
             }
