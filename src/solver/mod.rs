@@ -1093,8 +1093,11 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         };
         blend(scratch, 0.0);
         self.cold_start(scratch);
+        // Short curves take no chord steps along the homotopy: each step's small budget
+        // counts them, and the hard curves that get here need every Newton step of it.
         let budget = |total: usize, cap: usize| Settings {
             max_iterations: cap.min(set.max_iterations.saturating_sub(total)),
+            newton_chords: set.newton_chords && prob.p.len() >= NEWTON_CHORD_MIN_BLOCKS,
             ..*set
         };
         let first = self.solve(
