@@ -801,12 +801,16 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             &mut self.res,
             &mut self.check,
             tol,
+            &mut [],
         )
     }
 
     /// The scaled residual `res`, the convergence measures `check` and the merit `½|R|²` of
     /// state `st`, block by block. With `FROZEN` the row scales are read from `scale`
     /// (and left as they are); otherwise they are computed and stored there.
+    ///
+    /// `raw` (as long as `res`, or empty) receives what [`refreeze`](Self::refreeze) needs,
+    /// on curves cut in no halves only.
     fn residuals<const FROZEN: bool>(
         prob: &Problem<D>,
         st: &State<D>,
@@ -814,11 +818,12 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         res: &mut [[f64; B]],
         check: &mut [[f64; B]],
         tol: f64,
+        raw: &mut [Raw],
     ) -> f64 {
         debug_assert!(scale.len() == st.t.len() && res.len() == st.t.len());
         debug_assert_eq!(check.len(), st.t.len());
         let Some(split) = Split::of(prob.closed, st.t.len()) else {
-            return Self::residuals_from::<FROZEN>(prob, st, 0, scale, res, check, tol, &mut []);
+            return Self::residuals_from::<FROZEN>(prob, st, 0, scale, res, check, tol, raw);
         };
         let cuts = split.cuts();
         let [s0, s1, s2, s3] = split4(scale, cuts);
@@ -1359,28 +1364,16 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// `trial_res`, `trial_check` and `trial_scale` as [`assemble`](Self::assemble) would
     /// at the trial state.
     fn trial_merit(&mut self, prob: &Problem<D>, tol: f64) -> f64 {
-        let phi = if self.n() < split_min() {
-            // Also what `refreeze` needs, should the state be accepted.
-            Self::residuals_from::<false>(
-                prob,
-                &self.trial,
-                0,
-                &mut self.trial_scale,
-                &mut self.trial_res,
-                &mut self.trial_check,
-                tol,
-                &mut self.trial_raw,
-            )
-        } else {
-            Self::residuals::<false>(
-                prob,
-                &self.trial,
-                &mut self.trial_scale,
-                &mut self.trial_res,
-                &mut self.trial_check,
-                tol,
-            )
-        };
+        // Also what `refreeze` needs, should the state be accepted.
+        let phi = Self::residuals::<false>(
+            prob,
+            &self.trial,
+            &mut self.trial_scale,
+            &mut self.trial_res,
+            &mut self.trial_check,
+            tol,
+            &mut self.trial_raw,
+        );
         if phi.is_nan() {
             f64::INFINITY
         } else {

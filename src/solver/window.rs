@@ -745,6 +745,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             &mut self.trial_res,
             &mut self.trial_check,
             tol,
+            &mut [],
         );
         self.swap_trial_residuals();
     }
@@ -1013,7 +1014,13 @@ mod tests {
             );
             let tol = set.tolerance;
             Workspace::<D, B>::residuals::<false>(
-                &prob, &ws.state, &mut scale, &mut res, &mut fresh, tol,
+                &prob,
+                &ws.state,
+                &mut scale,
+                &mut res,
+                &mut fresh,
+                tol,
+                &mut [],
             );
             for (j, (a, b)) in fresh.iter().zip(&ws.check).enumerate() {
                 let inside = matches!(ws.window.slot[j], Slot::Window(_));
