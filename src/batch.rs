@@ -55,7 +55,7 @@ impl<'a, P> BatchCurve<'a, P> {
 }
 
 /// Solves batches of curves cold, on the threads of rayon's pool (feature `parallel`,
-/// [`rayon::current_num_threads`] of them) or on the calling thread alone.
+/// `rayon::current_num_threads()` of them) or on the calling thread alone.
 ///
 /// Use the aliases [`BatchSolver`] (2D) and [`BatchSolver3`] (3D).
 ///
