@@ -901,17 +901,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         for (j, ((r, check), raw)) in blocks.enumerate() {
             let f = self.fact_scale[j];
             r[D] = raw.joint * f[0];
-            // As in `eval_block_raw`: the complementarity switch with the frozen scale.
-            let t = self.state.t[j];
-            let g = raw.stationarity * f[1];
-            let z = t - g;
-            r[D + 1] = if z <= 0.0 {
-                t - 0.0
-            } else if z >= 1.0 {
-                t - 1.0
-            } else {
-                g
-            };
+            // The complementarity switch with the frozen scale.
+            r[D + 1] = peak_row(self.state.t[j], raw.stationarity * f[1]).0;
             phi += r.iter().map(|v| 0.5 * v * v).sum::<f64>();
             *check = Self::check_scaled(*r, raw.g2, raw.scales);
         }
@@ -1565,18 +1556,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         // stationarity residual (increasing in t through a maximum), `t - clamp(t - g, 0, 1)`
         // is `g` inside, `t` when the peak is forced to the start, `t - 1` at the end.
         let g = rt * sc_t;
-        let z = l.t - g;
-        let peak_end = if z <= 0.0 {
-            Some(0.0)
-        } else if z >= 1.0 {
-            Some(1.0)
-        } else {
-            None
-        };
-        res[D + 1] = match peak_end {
-            Some(end) => l.t - end,
-            None => g,
-        };
+        let (peak, peak_end) = peak_row(l.t, g);
+        res[D + 1] = peak;
         scale[1] = sc_t;
         // G2 joint (trivial for the last block of an open curve: λ_{n-1} = 1).
         let last_open = !prob.closed && j == n - 1;
@@ -1792,6 +1773,25 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             }
             *d = dj;
         }
+    }
+}
+
+/// The peak row `t - clamp(t - g, 0, 1)` of a block with peak parameter `t` and scaled
+/// stationarity residual `g` (a box complementarity, for the semi-smooth Newton step), and
+/// the segment end the peak is forced to, if any.
+#[inline(always)]
+fn peak_row(t: f64, g: f64) -> (f64, Option<f64>) {
+    let z = t - g;
+    let end = if z <= 0.0 {
+        Some(0.0)
+    } else if z >= 1.0 {
+        Some(1.0)
+    } else {
+        None
+    };
+    match end {
+        Some(end) => (t - end, Some(end)),
+        None => (g, None),
     }
 }
 

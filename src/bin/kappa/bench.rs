@@ -16,6 +16,9 @@ use crate::failure::{self, Failure, Result};
 
 /// The εκ shape parameter of the drawing benchmarks.
 const EK_SHAPE: f64 = 0.85;
+/// The schemes (and εκ shape) each drawing is timed with, in the order of the rows.
+const DRAWING_SCHEMES: [(Scheme, Option<f64>); 2] =
+    [(Scheme::Kappa, None), (Scheme::EkCubic, Some(EK_SHAPE))];
 /// Points of the small star loop (warm and cold cases).
 const SMALL_LOOP: usize = 50;
 /// The input point moved in the warm case, and by how much.
@@ -103,6 +106,23 @@ impl RunInfo {
             converged: spline.converged(),
         }
     }
+
+    /// The iterations of several solves together, and whether all converged; the first
+    /// error if any failed.
+    fn total(
+        splines: impl IntoIterator<Item = std::result::Result<Spline, kappa::Error>>,
+    ) -> std::result::Result<RunInfo, kappa::Error> {
+        let mut info = RunInfo {
+            iterations: 0,
+            converged: true,
+        };
+        for spline in splines {
+            let spline = black_box(spline?);
+            info.iterations += spline.iterations();
+            info.converged &= spline.converged();
+        }
+        Ok(info)
+    }
 }
 
 /// The timing of a case.
@@ -132,44 +152,28 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
             .map(|c| (c.kurbo_points(), c.is_closed()))
             .collect();
         let points = curves.iter().map(|(p, _)| p.len()).sum();
-        for (scheme, shape) in [(Scheme::Kappa, None), (Scheme::EkCubic, Some(EK_SHAPE))] {
+        for (scheme, shape) in DRAWING_SCHEMES {
             let shape_arg = shape.map_or(Shape::Neutral, Shape::Global);
             let timing = measure(repeat, || {
-                let mut info = RunInfo {
-                    iterations: 0,
-                    converged: true,
-                };
-                for (pts, closed) in &curves {
-                    let spline = black_box(solver.solve(pts, *closed, scheme, &shape_arg)?);
-                    info.iterations += spline.iterations();
-                    info.converged &= spline.converged();
-                }
-                Ok(info)
+                RunInfo::total(
+                    curves
+                        .iter()
+                        .map(|(pts, closed)| solver.solve(pts, *closed, scheme, &shape_arg)),
+                )
             })
             .map_err(|f| f.context(name))?;
             rows.push(row(name, scheme, shape, curves.len(), points, timing));
         }
         // The same curves as one batch, spread over the threads of the pool.
-        for (scheme, shape) in [(Scheme::Kappa, None), (Scheme::EkCubic, Some(EK_SHAPE))] {
+        for (scheme, shape) in DRAWING_SCHEMES {
             let shape_arg = shape.map_or(Shape::Neutral, Shape::Global);
             let batch: Vec<BatchCurve<'_, Point>> = curves
                 .iter()
                 .map(|(pts, closed)| BatchCurve::new(pts, *closed, &shape_arg))
                 .collect();
             let threads = batcher.threads_for(&batch);
-            let mut timing = measure(repeat, || {
-                let mut info = RunInfo {
-                    iterations: 0,
-                    converged: true,
-                };
-                for spline in black_box(batcher.solve(&batch, scheme)) {
-                    let spline = spline?;
-                    info.iterations += spline.iterations();
-                    info.converged &= spline.converged();
-                }
-                Ok(info)
-            })
-            .map_err(|f| f.context(name))?;
+            let mut timing = measure(repeat, || RunInfo::total(batcher.solve(&batch, scheme)))
+                .map_err(|f| f.context(name))?;
             timing.threads = threads;
             rows.push(row(name, scheme, shape, curves.len(), points, timing));
         }
