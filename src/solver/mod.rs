@@ -1143,15 +1143,19 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         fn lanes<const B: usize>(check: &[[f64; B]]) -> f64 {
             let lanes = check.iter().fold([0.0f64; B], |mut m, r| {
                 for (m, &x) in m.iter_mut().zip(r) {
-                    *m = if x.is_nan() {
-                        f64::INFINITY
-                    } else {
-                        m.max(x.abs())
-                    };
+                    let a = x.abs();
+                    // Larger, or NaN: one comparison in the common case, where
+                    // `f64::max` would also sort out NaN operands.
+                    if !(a <= *m) {
+                        *m = if a.is_nan() { f64::INFINITY } else { a };
+                    }
                 }
                 m
             });
-            lanes.into_iter().fold(0.0, f64::max)
+            // The lanes hold no NaN.
+            lanes
+                .into_iter()
+                .fold(0.0, |m, x| if x > m { x } else { m })
         }
         if check.len() < split_min() {
             return lanes(check);
