@@ -689,6 +689,13 @@ struct Solved {
     path: BezPath,
 }
 
+/// `x` with the lowest 23 of its 52 mantissa bits cleared (a relative step of 2⁻²⁹, about
+/// 2e-9): values that differ only by rounding compare equal, but for the rare pair that
+/// straddles a step.
+fn rounded(x: f64) -> f64 {
+    f64::from_bits(x.to_bits() & !((1u64 << 23) - 1))
+}
+
 /// The spans that strayed (`Some`), worst first, and those of them that get an anchor in
 /// the first attempt of a refinement round: in that order, each span none of whose
 /// neighbours is taken yet, at most `budget`.
@@ -698,7 +705,10 @@ fn pick_spans(
     budget: usize,
 ) -> (Vec<usize>, Vec<usize>) {
     let m = spans.len();
-    let deviation = |i: usize| spans[i].map_or(0.0, |x| x.0);
+    // Deviations equal to about nine digits sort by position: the mirror-image spans of a
+    // symmetric outline then get their anchors in the same order whatever the last digits
+    // of the solve are.
+    let deviation = |i: usize| spans[i].map_or(0.0, |x| rounded(x.0));
     let mut order: Vec<usize> = (0..m).filter(|&i| spans[i].is_some()).collect();
     order.sort_by(|&a, &b| deviation(b).total_cmp(&deviation(a)).then(a.cmp(&b)));
     let neighbours = |i: usize, j: usize| {
@@ -1362,6 +1372,21 @@ mod tests {
         assert_eq!(pick_spans(&spans, true, 8).1, [3]);
         assert_eq!(pick_spans(&spans, false, 8).1, [3, 0]);
         assert!(pick_spans(&[None, None], true, 8).0.is_empty());
+    }
+
+    #[test]
+    fn pick_spans_orders_rounding_ties_by_position() {
+        let d = |x: f64| Some((x, 0.0));
+        // Mirror-image spans whose deviations differ in the last digits only: by position,
+        // whichever is larger.
+        let x = 7.532618028549983;
+        for (a, b) in [(x, x * (1.0 + 4.0 * f64::EPSILON)), (x * (1.0 + 1e-12), x)] {
+            let spans = [None, d(a), None, d(b), d(3.0)];
+            assert_eq!(pick_spans(&spans, true, 8).0, [1, 3, 4]);
+        }
+        // A real difference still counts.
+        let spans = [None, d(x), None, d(x * (1.0 + 1e-7)), d(3.0)];
+        assert_eq!(pick_spans(&spans, true, 8).0, [3, 1, 4]);
     }
 
     /// An ellipse of semi-axes 1000 and 300 as eight quadratics (the font way).
