@@ -100,10 +100,16 @@ const QUADRATIC_PEAK_TOLERANCE: f64 = 1e-14;
 /// The same in the classic iterations that start the first Newton attempt of a cold solve.
 /// The root solve stops once a Newton correction is below this, after applying it, so where
 /// it converges quadratically `t` is still accurate to about the square of this; where it
-/// does not, Newton refines `t` anyway. (Saves about one root-solve step per segment and
-/// iteration: 13 % of the bear's εκ solve. The fallback attempts keep the tighter
-/// tolerances: on hostile input their path is sensitive to every digit of the start.)
-const START_PEAK_T_TOLERANCE: f64 = 1e-8;
+/// does not, Newton refines `t` anyway: a start needs no more. (1e-8 in place of the full
+/// tolerance took 13 % off the bear's εκ solve, 1e-2 in place of 1e-8 a further 10 %, at a
+/// few more Newton and chord steps. The fallback attempts keep the tighter tolerances: on
+/// hostile input their path is sensitive to every digit of the start.)
+const START_PEAK_T_TOLERANCE: f64 = 1e-2;
+/// The same for curves of [`NEWTON_CHORD_MIN_BLOCKS`] segments or more: their re-solves
+/// after a small move work at the rounding floor of thousands of rows, and a smooth
+/// 2 000-point loop started from the looser tolerance's solution stopped at 1.6 times
+/// the tolerance.
+const LONG_START_PEAK_T_TOLERANCE: f64 = 1e-8;
 /// Iteration cap of the 1-D root solve for `t` in the classic loop.
 const ROOT_ITERATIONS: usize = 60;
 /// A Newton step that lands `t` within this of an end of `[0, 1]` is taken in full, `t`
@@ -1667,6 +1673,11 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// (cyclic) tridiagonal system for the `c_j`.
     pub(crate) fn classic_iteration(&mut self, prob: &Problem<D>, start: bool) {
         let n = self.n();
+        let start = start.then_some(if n < NEWTON_CHORD_MIN_BLOCKS {
+            START_PEAK_T_TOLERANCE
+        } else {
+            LONG_START_PEAK_T_TOLERANCE
+        });
         for a in self.tri.iter_mut() {
             a.resize(n, 0.0);
         }
@@ -1757,7 +1768,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         st: &State<D>,
         j0: usize,
         ends: &mut Option<EndTerms>,
-        start: bool,
+        start: Option<f64>,
         (t, a, b, c): (&mut [f64], &mut [f64], &mut [f64], &mut [f64]),
         d: &mut [[f64; D]],
     ) {
@@ -2067,7 +2078,8 @@ impl EndTerms {
 /// is the cubic of seed 004 eq. 4). The peak condition, with `c_1` eliminated and multiplied
 /// by `w1²`, is `f(t) = c_rr r̃·r̃ + c_rs r̃·s̃ + c_ss s̃·s̃` with `r̃ = (p - q0) - w2 d`,
 /// `s̃ = (q2 - p) - w0 d`, `d = q2 - q0`; `f(0) ≥ 0 ≥ f(1)`, and the root is found by
-/// Newton's method safeguarded by bisection, to [`START_PEAK_T_TOLERANCE`] with `start`.
+/// Newton's method safeguarded by bisection, to the tolerance `start` where given (the classic
+/// iterations that start a cold solve: [`START_PEAK_T_TOLERANCE`]), otherwise to the full one.
 pub(crate) fn peak_parameter<const D: usize>(
     basis: Basis,
     ends: &mut Option<EndTerms>,
@@ -2075,7 +2087,7 @@ pub(crate) fn peak_parameter<const D: usize>(
     q2: [f64; D],
     p: [f64; D],
     guess: f64,
-    start: bool,
+    start: Option<f64>,
 ) -> f64 {
     let d = sub(q2, q0);
     if basis == Basis::QUADRATIC {
@@ -2100,11 +2112,7 @@ pub(crate) fn peak_parameter<const D: usize>(
             let dv = (3.0 * c3 * t + 2.0 * c2) * t + c1;
             (-v, -dv)
         };
-        let tol = if start {
-            START_PEAK_T_TOLERANCE
-        } else {
-            QUADRATIC_PEAK_TOLERANCE
-        };
+        let tol = start.unwrap_or(QUADRATIC_PEAK_TOLERANCE);
         return bracketed_newton(neg_g, guess, tol);
     }
     let pa = sub(p, q0);
@@ -2140,11 +2148,7 @@ pub(crate) fn peak_parameter<const D: usize>(
     if !(fhi < 0.0) {
         return 1.0;
     }
-    let tol = if start {
-        START_PEAK_T_TOLERANCE
-    } else {
-        PEAK_T_TOLERANCE
-    };
+    let tol = start.unwrap_or(PEAK_T_TOLERANCE);
     bracketed_newton(f, guess, tol)
 }
 
@@ -2202,7 +2206,7 @@ mod tests {
         for _ in 0..20_000 {
             let (q0, q2, p) = ([r(), r()], [r(), r()], [r(), r()]);
             let guess = 0.5 + 0.5 * r();
-            let t = peak_parameter(Basis::QUADRATIC, &mut None, q0, q2, p, guess, false);
+            let t = peak_parameter(Basis::QUADRATIC, &mut None, q0, q2, p, guess, None);
             assert!((0.0..=1.0).contains(&t));
             let (d, e) = (sub(q2, q0), sub(q0, p));
             let f: [f64; 2] = core::array::from_fn(|k| 3.0 * q0[k] - 2.0 * p[k] - q2[k]);
@@ -2221,7 +2225,7 @@ mod tests {
     fn peak_parameter_quadratic_is_vertex() {
         // For the quadratic the peak t is where the parabola's vertex lies.
         let (q0, q2, p) = ([0.0, 0.0], [4.0, 0.0], [1.0, 1.5]);
-        let t = peak_parameter(Basis::QUADRATIC, &mut None, q0, q2, p, 0.5, false);
+        let t = peak_parameter(Basis::QUADRATIC, &mut None, q0, q2, p, 0.5, None);
         let w = Basis::QUADRATIC.weights(t);
         let c1: [f64; 2] = core::array::from_fn(|k| {
             (p[k] - w[0][0] * q0[k] - w[0][1] * q2[k]) / (1.0 - w[0][0] - w[0][1])
