@@ -1033,17 +1033,14 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             // One segment between fixed ends (an open curve through three points): its
             // control point and λ are fixed by the ends, and one classic iteration solves
             // for `t` and the control point directly; more repeat it.
-            let classic = if !prob.closed && prob.p.len() == 1 {
-                classic.min(1)
-            } else {
-                classic
-            };
+            let single = !prob.closed && prob.p.len() == 1;
+            let classic = if single { classic.min(1) } else { classic };
             let budget = Settings {
                 max_iterations: ATTEMPT_BUDGET.min(set.max_iterations.saturating_sub(total)),
                 ..*set
             };
             self.cold_start(prob);
-            let mut out = self.solve(prob, &budget, classic, attempt == 0);
+            let mut out = self.solve(prob, &budget, classic, attempt == 0 && !single);
             total += out.iterations;
             out.iterations = total;
             if out.converged {
