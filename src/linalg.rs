@@ -449,12 +449,21 @@ impl DenseLu {
             // are and vectorizes.
             let mut pivot_row = [0.0; N];
             pivot_row[k + 1..].copy_from_slice(&top[k * N + k + 1..(k + 1) * N]);
+            // Once the active part lies in the second half, only that half is updated (a
+            // slice of fixed length as well: about a sixth fewer operations in all).
+            let half = k + 1 >= N / 2;
             for row in below.chunks_exact_mut(N) {
                 let row: &mut [f64; N] = row.try_into().unwrap();
                 let f = row[k] * inv;
                 if f != 0.0 {
-                    for j in 0..N {
-                        row[j] -= f * pivot_row[j];
+                    if half {
+                        for (x, y) in row[N / 2..].iter_mut().zip(&pivot_row[N / 2..]) {
+                            *x -= f * y;
+                        }
+                    } else {
+                        for j in 0..N {
+                            row[j] -= f * pivot_row[j];
+                        }
                     }
                 }
                 row[k] = f;
