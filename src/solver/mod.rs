@@ -1301,6 +1301,23 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 t: st.t[j],
             };
         }
+        if prob.closed {
+            // Near the wrap-around: three cyclic indices, each used for `c` and `λ`.
+            let n = st.t.len();
+            let im = if j == 0 { n - 1 } else { j - 1 };
+            let i1 = if j + 1 == n { 0 } else { j + 1 };
+            let i2 = if i1 + 1 == n { 0 } else { i1 + 1 };
+            return Local {
+                cm: st.c[im],
+                c0: st.c[j],
+                c1: st.c[i1],
+                c2: st.c[i2],
+                lm: st.lam[im],
+                l0: st.lam[j],
+                l1: st.lam[i1],
+                t: st.t[j],
+            };
+        }
         let c = |i: isize| st.control(prob, i);
         let lam = |i: isize| st.ratio(prob, i);
         let j = j as isize;
@@ -1774,7 +1791,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         for (i, ((((t, a), b), c), d)) in rows {
             let j = j0 + i;
             let l = Self::local(prob, st, j);
-            let [q0, _, q2] = st.segment(prob, j);
+            // The segment's ends (as `State::segment` has them) from the gathered block.
+            let (q0, q2) = (lerp(l.cm, l.c0, l.lm), lerp(l.c0, l.c1, l.l0));
             let basis = prob.basis[j];
             *t = peak_parameter(basis, ends, q0, q2, prob.p[j], l.t, start);
             let w = basis.weights(*t);
