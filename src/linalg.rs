@@ -410,6 +410,12 @@ impl DenseLu {
         self.a[i * self.n + j] += v;
     }
 
+    /// Row `i`, to add to.
+    #[inline]
+    pub(crate) fn row_mut(&mut self, i: usize) -> &mut [f64] {
+        &mut self.a[i * self.n..(i + 1) * self.n]
+    }
+
     /// Factor in place. Returns `false` if a pivot is zero or not finite.
     pub(crate) fn factor(&mut self) -> bool {
         // The orders of the small κ/εκ systems (blocks of 3 unknowns in 2D, 4 in 3D) get

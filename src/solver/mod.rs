@@ -509,8 +509,23 @@ impl Linear {
         // One dispatch per block, not per entry.
         match self.mode {
             LinearMode::Dense => {
-                let m = &mut self.dense;
-                scatter(row0, rows, jl, columns, |i, j, v| m.add(i, j, v));
+                // Every entry of the dense matrix exists: whole rows, zeros added as well
+                // (the same sums), no test per entry.
+                let d = columns.d;
+                debug_assert_eq!(rows, d + 1);
+                for (row, entries) in jl.iter().enumerate().take(rows) {
+                    let r = self.dense.row_mut(row0 + row);
+                    for (o, block) in entries.iter().enumerate() {
+                        if let Some(cb) = columns.c[o] {
+                            for (x, v) in r[cb..cb + d].iter_mut().zip(block) {
+                                *x += v;
+                            }
+                        }
+                        if let Some(cl) = columns.l[o] {
+                            r[cl] += block[d];
+                        }
+                    }
+                }
             }
             LinearMode::Bordered => {
                 let m = &mut self.bord;
