@@ -1496,7 +1496,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             let mut g2 = 0.0;
             let (r, mut jl) = Self::block_jacobian(prob, j, &loc, &mut scale, &mut g2);
             let columns = Columns::new::<D, B>(prob.closed, n, j, B - 1);
-            *cond = condense::<D, B>(&mut jl, &columns);
+            condense_into::<D, B>(&mut jl, &columns, cond);
             add(j * (B - 1), &jl, &columns);
             *scale_j = scale;
             *check = Self::check_row(r, g2, &loc, tol);
@@ -1952,6 +1952,19 @@ fn condense<const D: usize, const B: usize>(
     jl: &mut [[[f64; B]; 4]; B],
     columns: &Columns,
 ) -> Condensed<B> {
+    let mut out = Condensed::default();
+    condense_into::<D, B>(jl, columns, &mut out);
+    out
+}
+
+/// [`condense`] into `out` (in place: the entries of `out.cols` and `out.vals` past its
+/// new `len` are left as they were, and never read).
+#[inline]
+fn condense_into<const D: usize, const B: usize>(
+    jl: &mut [[[f64; B]; 4]; B],
+    columns: &Columns,
+    out: &mut Condensed<B>,
+) {
     let (tr, to, tk) = (D + 1, 1, D + 1);
     let mut p = jl[tr][to][tk];
     if !(p.abs() >= MIN_PIVOT) {
@@ -1972,24 +1985,22 @@ fn condense<const D: usize, const B: usize>(
             jl[r][to][tk] = 0.0;
         }
     }
-    let mut out = Condensed {
-        m,
-        inv,
-        ..Condensed::default()
-    };
+    out.m = m;
+    out.inv = inv;
+    let mut len = 0;
     for (o, block) in peak.iter().enumerate() {
         for (k, &v) in block.iter().enumerate().take(D + 1) {
             if v != 0.0 {
                 if let Some(col) = columns.at(o, k) {
                     debug_assert!(u32::try_from(col).is_ok());
-                    out.cols[out.len] = col as u32;
-                    out.vals[out.len] = v;
-                    out.len += 1;
+                    out.cols[len] = col as u32;
+                    out.vals[len] = v;
+                    len += 1;
                 }
             }
         }
     }
-    out
+    out.len = len;
 }
 
 /// Which variable of the stencil of block `j` a Jacobian entry belongs to.

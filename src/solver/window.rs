@@ -32,8 +32,8 @@
 //! not converge do the global chord and Newton steps take over.
 
 use super::{
-    condense, lambda_valid, scatter, Columns, Condensed, Outcome, Problem, Settings, Split,
-    Workspace,
+    condense, condense_into, lambda_valid, scatter, Columns, Condensed, Outcome, Problem, Settings,
+    Split, Workspace,
 };
 use crate::linalg::BandLu;
 
@@ -541,7 +541,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     w.wmeasure[i] = Self::check_scaled(r, g2, w.wcheck[i]);
                     w.wmeasure[i].into_iter().for_each(&mut measure);
                     let columns = Columns::new::<D, B>(prob.closed, n, j, bb);
-                    let cond = condense::<D, B>(&mut jl, &columns);
+                    condense_into::<D, B>(&mut jl, &columns, &mut w.wcond[i]);
                     let (slot, lin, jwo) = (&w.slot, &mut w.lin, &mut w.jwo);
                     scatter(i * bb, bb, &jl, &columns, |row, col, v| {
                         match slot[col / bb] {
@@ -549,9 +549,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                             Slot::Outer(p) => jwo.push((row, p * bb + col % bb, v)),
                         }
                     });
-                    cond.rhs(&r, &mut w.rhs[i * bb..]);
+                    w.wcond[i].rhs(&r, &mut w.rhs[i * bb..]);
                     w.wres[i] = r;
-                    w.wcond[i] = cond;
                     w.wscale[i] = scale;
                 }
                 (w.factored, w.assembled) = (false, true);
