@@ -1002,9 +1002,9 @@ pub(crate) fn solve_tridiagonal<const D: usize>(
 }
 
 /// The cyclic system of order 3, a full 3 × 3 matrix (row `i` is `a_i`, `b_i`, `c_i` on the
-/// columns `i - 1`, `i`, `i + 1` modulo 3), by Gaussian elimination with partial pivoting: a
-/// tenth of the two Thomas passes and the Sherman–Morrison correction. `false` if a pivot
-/// vanishes or is not finite.
+/// columns `i - 1`, `i`, `i + 1` modulo 3), by Gaussian elimination with partial pivoting:
+/// about 230 instructions against 540 for the two Thomas passes and the Sherman–Morrison
+/// correction (callgrind). `false` if a pivot vanishes or is not finite.
 // Index loops of fixed length: the compiler unrolls them fully (the iterator form measured
 // about 8 000 instructions more on the bear drawing).
 #[allow(clippy::needless_range_loop)]
