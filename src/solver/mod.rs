@@ -1317,7 +1317,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             };
         }
         if prob.closed {
-            // Near the wrap-around: three cyclic indices, each used for `c` and `λ`.
+            // Near the wrap-around: three cyclic indices, each used for `c` and `λ`. Each
+            // can leave `0..n` on one side only, so it takes one test (`wrap` takes two:
+            // with it the bear's κ solve measured 1.1 % more instructions).
             let n = st.t.len();
             let im = if j == 0 { n - 1 } else { j - 1 };
             let i1 = if j + 1 == n { 0 } else { j + 1 };
@@ -1496,7 +1498,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             let mut g2 = 0.0;
             let (r, mut jl) = Self::block_jacobian(prob, j, &loc, &mut scale, &mut g2);
             let columns = Columns::new::<D, B>(prob.closed, n, j, B - 1);
-            condense_into::<D, B>(&mut jl, &columns, cond);
+            condense::<D, B>(&mut jl, &columns, cond);
             add(j * (B - 1), &jl, &columns);
             *scale_j = scale;
             *check = Self::check_row(r, g2, &loc, tol);
@@ -1946,21 +1948,11 @@ enum LinState {
 
 /// Eliminate `t_j` from the local block rows `jl[row][offset][variable]` (offsets -1 ..= 2,
 /// `t_j` is variable `D + 1` of offset 0, the peak row is row `D + 1`): subtract multiples of
-/// the peak row from the other rows so that their `t_j` entries vanish.
+/// the peak row from the other rows so that their `t_j` entries vanish. What the elimination
+/// leaves behind is written into `out` in place (the entries of `out.cols` and `out.vals`
+/// past its new `len` are left as they were, and never read).
 #[inline]
 fn condense<const D: usize, const B: usize>(
-    jl: &mut [[[f64; B]; 4]; B],
-    columns: &Columns,
-) -> Condensed<B> {
-    let mut out = Condensed::default();
-    condense_into::<D, B>(jl, columns, &mut out);
-    out
-}
-
-/// [`condense`] into `out` (in place: the entries of `out.cols` and `out.vals` past its
-/// new `len` are left as they were, and never read).
-#[inline]
-fn condense_into<const D: usize, const B: usize>(
     jl: &mut [[[f64; B]; 4]; B],
     columns: &Columns,
     out: &mut Condensed<B>,

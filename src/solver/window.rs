@@ -32,8 +32,8 @@
 //! not converge do the global chord and Newton steps take over.
 
 use super::{
-    condense, condense_into, lambda_valid, scatter, Columns, Condensed, Outcome, Problem, Settings,
-    Split, Workspace,
+    condense, lambda_valid, scatter, Columns, Condensed, Outcome, Problem, Settings, Split,
+    Workspace,
 };
 use crate::linalg::BandLu;
 
@@ -381,13 +381,14 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         w.x.clear();
         w.x.resize(no * bb * nq, 0.0);
         w.ocond.clear();
+        w.ocond.resize(no, Condensed::default());
         for p in 0..no {
             let j = w.outer[p];
             let loc = Self::local(prob, state, j);
             let (mut scale, mut g2) = ([1.0; 2], 0.0);
             let (_, mut jl) = Self::block_jacobian(prob, j, &loc, &mut scale, &mut g2);
             let columns = Columns::new::<D, B>(prob.closed, n, j, bb);
-            w.ocond.push(condense::<D, B>(&mut jl, &columns));
+            condense::<D, B>(&mut jl, &columns, &mut w.ocond[p]);
             let (slot, band, x) = (&w.slot, &mut w.band, &mut w.x);
             let mut ok = true;
             scatter(p * bb, bb, &jl, &columns, |row, col, v| {
@@ -541,7 +542,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     w.wmeasure[i] = Self::check_scaled(r, g2, w.wcheck[i]);
                     w.wmeasure[i].into_iter().for_each(&mut measure);
                     let columns = Columns::new::<D, B>(prob.closed, n, j, bb);
-                    condense_into::<D, B>(&mut jl, &columns, &mut w.wcond[i]);
+                    condense::<D, B>(&mut jl, &columns, &mut w.wcond[i]);
                     let (slot, lin, jwo) = (&w.slot, &mut w.lin, &mut w.jwo);
                     scatter(i * bb, bb, &jl, &columns, |row, col, v| {
                         match slot[col / bb] {
