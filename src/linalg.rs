@@ -453,8 +453,8 @@ impl DenseLu {
             // The pivot row's active part, zero elsewhere: every row below is updated over
             // its whole (fixed) length, which leaves its multipliers (columns < k) as they
             // are and vectorizes.
-            let mut pivot_row = [0.0; N];
-            pivot_row[k + 1..].copy_from_slice(&top[k * N + k + 1..(k + 1) * N]);
+            let prow = &top[k * N..(k + 1) * N];
+            let pivot_row: [f64; N] = core::array::from_fn(|j| if j > k { prow[j] } else { 0.0 });
             // Once the active part lies in the second half, only that half is updated (a
             // slice of fixed length as well: about a sixth fewer operations in all).
             let half = k + 1 >= N / 2;
