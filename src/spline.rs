@@ -784,8 +784,8 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             let points: Vec<P> = self.points.iter().map(|&c| P::from_coords(c)).collect();
             return self.solve(&points, self.prob.closed, scheme, shape);
         }
-        let shapes = expand_shapes(scheme, shape, self.points.len())?;
-        self.set_shapes(scheme, &shapes);
+        check_shapes(scheme, shape, self.points.len())?;
+        self.set_shapes(scheme, shape);
         self.ws.invalidate();
         self.run()
     }
@@ -878,28 +878,30 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         if closed && collinear(local) {
             return Err(Error::Collinear);
         }
-        let shapes = shape.map(|s| expand_shapes(scheme, s, m)).transpose()?;
+        if let Some(shape) = shape {
+            check_shapes(scheme, shape, m)?;
+        }
         self.prob.closed = closed;
         self.prob.p.clear();
         self.prob
             .p
             .extend_from_slice(&local[block_range(closed, m)]);
         self.prob.ghost = [local[0], local[m - 1]];
-        if let Some(shapes) = shapes {
-            self.set_shapes(scheme, &shapes);
+        if let Some(shape) = shape {
+            self.set_shapes(scheme, shape);
         }
         Ok(())
     }
 
     /// Set the scheme and the segment bases from validated per-point shapes (for open curves
     /// the first and last points have no segment).
-    fn set_shapes(&mut self, scheme: Scheme, shapes: &[f64]) {
+    fn set_shapes(&mut self, scheme: Scheme, shape: &Shape) {
         self.scheme = scheme;
         self.prob.basis.clear();
-        let range = block_range(self.prob.closed, shapes.len());
+        let range = block_range(self.prob.closed, self.points.len());
         self.prob
             .basis
-            .extend(shapes[range].iter().map(|&a| scheme.basis(a)));
+            .extend(range.map(|i| scheme.basis(shape_at(scheme, shape, i))));
     }
 
     fn run(&mut self) -> Result<Spline<P>, Error> {
@@ -927,20 +929,15 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                 report,
             });
         }
-        if !closed && {
-            // All input points on one line (the ends may coincide, as in a loop that starts
-            // where it ends, so they are checked together with the interior points).
-            let mut all = Vec::with_capacity(self.prob.p.len() + 2);
-            all.push(self.prob.ghost[0]);
-            all.extend_from_slice(&self.prob.p);
-            all.push(self.prob.ghost[1]);
-            if collinear(&all) && !monotone_along_line(&all) {
+        // All input points on one line (the ends may coincide, as in a loop that starts
+        // where it ends, so they are checked together with the interior points; `local`
+        // holds all of them, the ends included).
+        if !closed && collinear(&self.local) {
+            if !monotone_along_line(&self.local) {
                 // A curve through points that double back along one line would need a
                 // cusp at every reversal: there is no κ- or εκ-curve through them.
                 return Err(Error::Collinear);
             }
-            collinear(&all)
-        } {
             self.straight_solution();
             self.warm = true;
             let report = SolveReport {
@@ -1119,23 +1116,34 @@ fn collinear<const D: usize>(p: &[[f64; D]]) -> bool {
     })
 }
 
-/// Per-point shape parameters, validated.
-fn expand_shapes(scheme: Scheme, shape: &Shape, m: usize) -> Result<Vec<f64>, Error> {
+/// The shape parameter of point `i` of `shape` (validated by [`check_shapes`]).
+fn shape_at(scheme: Scheme, shape: &Shape, i: usize) -> f64 {
+    match shape {
+        Shape::Neutral => scheme.neutral_shape(),
+        Shape::Global(a) => *a,
+        Shape::PerPoint(v) => v[i],
+    }
+}
+
+/// Validate the shape parameters of `m` points (read back by [`shape_at`], with no copy).
+fn check_shapes(scheme: Scheme, shape: &Shape, m: usize) -> Result<(), Error> {
     let (min, max) = scheme.shape_range();
-    let values = match shape {
-        Shape::Neutral => vec![scheme.neutral_shape(); m],
-        Shape::Global(a) => vec![*a; m],
-        Shape::PerPoint(v) => {
-            if v.len() != m {
-                return Err(Error::ShapeCount {
-                    expected: m,
-                    got: v.len(),
-                });
-            }
-            v.clone()
+    if let Shape::PerPoint(v) = shape {
+        if v.len() != m {
+            return Err(Error::ShapeCount {
+                expected: m,
+                got: v.len(),
+            });
         }
+    }
+    // A uniform shape is checked once (as the first point's).
+    let count = if matches!(shape, Shape::PerPoint(_)) {
+        m
+    } else {
+        m.min(1)
     };
-    for (index, &value) in values.iter().enumerate() {
+    for index in 0..count {
+        let value = shape_at(scheme, shape, index);
         if scheme == Scheme::Kappa && value != min {
             return Err(Error::InvalidOption(
                 "the kappa scheme has no shape parameter (use ek-cubic)",
@@ -1150,5 +1158,5 @@ fn expand_shapes(scheme: Scheme, shape: &Shape, m: usize) -> Result<Vec<f64>, Er
             });
         }
     }
-    Ok(values)
+    Ok(())
 }
