@@ -711,7 +711,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         if self.lin_state == LinState::Factored
             && self.fact_scale.len() == n
             && self.res.len() == n
-            && self.chord_steps(prob, set, CHORD_CONTRACTION, None, &mut out)
+            && self.chord_steps(prob, set, CHORD_CONTRACTION, None, false, &mut out)
         {
             return out;
         }
@@ -734,20 +734,24 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// Chord steps from the current state with the stored factorization while each one
     /// shrinks the merit by `contraction` or better; the state is left at the last accepted
     /// step. `start` is the merit of the current state with the factorization's row scales
-    /// where `res` and `check` already hold them (measured here otherwise). Counts the
-    /// steps in `out`; `true` (with `out` filled in) if converged.
+    /// where `res` and `check` already hold them (measured here otherwise). With `reuse`
+    /// (only with `start`), the convergence test's floor scales are those of the current
+    /// state, kept in `raw`. Counts the steps in `out`; `true` (with `out` filled in) if
+    /// converged.
     fn chord_steps(
         &mut self,
         prob: &Problem<D>,
         set: &Settings,
         contraction: f64,
         start: Option<f64>,
+        reuse: bool,
         out: &mut Outcome,
     ) -> bool {
+        let reuse = reuse && start.is_some();
         self.trial.clone_from(&self.state);
         let mut phi = match start {
             Some(phi) => phi,
-            None => self.residual_frozen(prob, set.tolerance),
+            None => self.residual_frozen(prob, set.tolerance, false),
         };
         for _ in 0..MAX_CHORD {
             if self.max_residual() <= set.tolerance {
@@ -763,7 +767,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 break;
             }
             core::mem::swap(&mut self.state, &mut self.trial);
-            let phi_new = self.residual_frozen(prob, set.tolerance);
+            let phi_new = self.residual_frozen(prob, set.tolerance, reuse);
             if !(phi_new <= contraction * phi) {
                 if self.max_residual() <= set.tolerance {
                     // Within the tolerance, with the merit at its rounding noise.
@@ -826,7 +830,19 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
 
     /// The residual (and convergence measures) of the current state with the row scales of
     /// the stored factorization; returns the merit.
-    fn residual_frozen(&mut self, prob: &Problem<D>, tol: f64) -> f64 {
+    fn residual_frozen(&mut self, prob: &Problem<D>, tol: f64, reuse: bool) -> f64 {
+        if reuse && self.raw.len() == self.res.len() {
+            return Self::residuals_from::<true>(
+                prob,
+                &self.state,
+                0,
+                &mut self.fact_scale,
+                &mut self.res,
+                &mut self.check,
+                tol,
+                RawIo::Read(&self.raw),
+            );
+        }
         Self::residuals::<true>(
             prob,
             &self.state,
@@ -856,7 +872,16 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         debug_assert!(scale.len() == st.t.len() && res.len() == st.t.len());
         debug_assert_eq!(check.len(), st.t.len());
         let Some(split) = Split::of(prob.closed, st.t.len()) else {
-            return Self::residuals_from::<FROZEN>(prob, st, 0, scale, res, check, tol, raw);
+            return Self::residuals_from::<FROZEN>(
+                prob,
+                st,
+                0,
+                scale,
+                res,
+                check,
+                tol,
+                RawIo::Write(raw),
+            );
         };
         let cuts = split.cuts();
         let [s0, s1, s2, s3] = split4(scale, cuts);
@@ -870,7 +895,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             (j3, s3, r3, c3),
         ];
         let [p0, p1, p2, p3] = Split::each(pieces, |(j, s, r, c)| {
-            Self::residuals_from::<FROZEN>(prob, st, j, s, r, c, tol, &mut [])
+            Self::residuals_from::<FROZEN>(prob, st, j, s, r, c, tol, RawIo::Write(&mut []))
         });
         ((p0 + p1) + p2) + p3
     }
@@ -888,7 +913,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         res: &mut [[f64; B]],
         check: &mut [[f64; B]],
         tol: f64,
-        raw: &mut [Raw],
+        mut raw: RawIo,
     ) -> f64 {
         let mut phi = 0.0;
         for (i, ((scale, res), check)) in scale.iter_mut().zip(res).zip(check).enumerate() {
@@ -908,15 +933,20 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             );
             phi += r.iter().map(|v| 0.5 * v * v).sum::<f64>();
             *res = r;
-            let scales = Self::check_scales(&loc, tol);
+            let scales = match &raw {
+                RawIo::Read(known) => known[i].scales,
+                RawIo::Write(_) => Self::check_scales(&loc, tol),
+            };
             *check = Self::check_scaled(r, g2, scales);
-            if let Some(out) = raw.get_mut(i) {
-                *out = Raw {
-                    joint: rw[0],
-                    stationarity: rw[1],
-                    g2,
-                    scales,
-                };
+            if let RawIo::Write(raw) = &mut raw {
+                if let Some(out) = raw.get_mut(i) {
+                    *out = Raw {
+                        joint: rw[0],
+                        stationarity: rw[1],
+                        g2,
+                        scales,
+                    };
+                }
             }
         }
         phi
@@ -958,10 +988,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         self.trial_res.resize(n, [0.0; B]);
         self.trial_check.resize(n, [0.0; B]);
         self.trial_scale.resize(n, [1.0; 2]);
-        self.trial_raw.resize(n, Raw::default());
-        self.raw.resize(n, Raw::default());
+        self.trial_raw.resize_with(n, Raw::default);
+        self.raw.resize_with(n, Raw::default);
         self.step.resize(n * B, 0.0);
-        self.cond.resize(n, Condensed::default());
+        self.cond.resize_with(n, Condensed::default);
     }
 
     /// Solve from the current state (a cold start or a previous solution), after `classic`
@@ -1019,12 +1049,18 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 // cheaper than assembling and factoring again on long curves. Their first
                 // residual is the line search's, rescaled (curves cut in no halves).
                 let start = (n < split_min()).then(|| self.refreeze());
+                // A Newton step that landed near the solution: the convergence test's floor
+                // scales of its landing point (in `raw`) serve the chord steps, which move
+                // the control points by about the residual, far less than the floors' own
+                // precision (the scales change the test only where a floor nears the
+                // tolerance).
+                let reuse = out.residual <= NEWTON_CHORD_NEAR;
                 let contraction = if n < NEWTON_CHORD_MIN_BLOCKS {
                     NEAR_CHORD_CONTRACTION
                 } else {
                     NEWTON_CHORD_CONTRACTION
                 };
-                if self.chord_steps(prob, set, contraction, start, &mut out) {
+                if self.chord_steps(prob, set, contraction, start, reuse, &mut out) {
                     // The factors may come from an early iterate: a warm re-solve from
                     // here assembles the Jacobian at its own start instead.
                     self.lin_state = LinState::Stale;
@@ -1875,6 +1911,13 @@ fn peak_row(t: f64, g: f64) -> (f64, Option<f64>) {
     }
 }
 
+/// What [`Workspace::residuals_from`] does with the [`Raw`] records of its blocks: fill them
+/// in (an empty slice: none), or take the convergence test's floor scales from them.
+enum RawIo<'a> {
+    Write(&'a mut [Raw]),
+    Read(&'a [Raw]),
+}
+
 /// What the residual of a block is made of besides its interpolation rows, kept by the line
 /// search so that [`Workspace::refreeze`] can rescale the joint and peak rows to other row
 /// scales without evaluating the block again.
@@ -2558,7 +2601,7 @@ mod linear_tests {
             accepted += 1;
             let fast = ws.refreeze();
             let (res, check) = (ws.res.clone(), ws.check.clone());
-            let slow = ws.residual_frozen(&prob, tol);
+            let slow = ws.residual_frozen(&prob, tol, false);
             assert_eq!(fast.to_bits(), slow.to_bits(), "closed={closed} n={n}");
             for (a, b) in res.iter().flatten().zip(ws.res.iter().flatten()) {
                 assert_eq!(a.to_bits(), b.to_bits(), "closed={closed} n={n}");

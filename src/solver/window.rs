@@ -381,7 +381,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         w.x.clear();
         w.x.resize(no * bb * nq, 0.0);
         w.ocond.clear();
-        w.ocond.resize(no, Condensed::default());
+        w.ocond.resize_with(no, Condensed::default);
         for p in 0..no {
             let j = w.outer[p];
             let loc = Self::local(prob, state, j);
@@ -460,7 +460,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         w.delta.clear();
         w.delta.resize(n * bb, 0.0);
         w.wres.resize(len, [0.0; B]);
-        w.wcond.resize(len, Condensed::default());
+        w.wcond.resize_with(len, Condensed::default);
         w.rhs.resize(len * bb, 0.0);
         w.wscale.resize(len, [1.0; 2]);
         w.wcheck.resize(len, [1.0; 2]);
@@ -803,7 +803,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     &mut self.res[run.clone()],
                     &mut self.check[run.clone()],
                     tol,
-                    &mut [],
+                    super::RawIo::Write(&mut []),
                 );
                 j = run.end;
             }
