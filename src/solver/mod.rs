@@ -306,14 +306,22 @@ struct JointTerms<const D: usize> {
     y: f64,
 }
 
+/// A triangle's area with its gradient, as [`triangle`] gives them.
+type Tri<const D: usize> = (f64, [f64; D], [f64; D]);
+
 impl<const D: usize> JointTerms<D> {
+    /// The terms of joint `j`. `carry` passes a triangle from one block to the next in a
+    /// pass over consecutive blocks: block `j`'s `T_{j+1}` is block `j + 1`'s `T_j`, the
+    /// same three control points in the same order. It holds `T_j` if known (taken), and
+    /// receives `T_{j+1}`.
     #[inline(always)]
-    fn new(prob: &Problem<D>, j: usize, l: &Local<D>) -> Self {
+    fn new(prob: &Problem<D>, j: usize, l: &Local<D>, carry: &mut Option<Tri<D>>) -> Self {
         let n = prob.basis.len();
         let k0 = prob.basis[j].end_coefficient();
         let k1 = prob.basis[if j + 1 == n { 0 } else { j + 1 }].end_coefficient();
-        let tj = triangle(l.cm, l.c0, l.c1);
+        let tj = carry.take().unwrap_or_else(|| triangle(l.cm, l.c0, l.c1));
         let tj1 = triangle(l.c0, l.c1, l.c2);
+        *carry = Some(tj1);
         JointTerms {
             k0,
             k1,
@@ -1672,7 +1680,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         // G2 joint (trivial for the last block of an open curve: λ_{n-1} = 1).
         let last_open = !prob.closed && j == n - 1;
         *g2 = 0.0;
-        let joint = (!last_open).then(|| JointTerms::new(prob, j, l));
+        // (Two triangles per block, though the next block computes this one's second
+        // again: passing it on measured more instructions, the pair computed together
+        // being cheaper than the carry.)
+        let joint = (!last_open).then(|| JointTerms::new(prob, j, l, &mut None));
         if let Some(JointTerms { x, y, .. }) = joint {
             let (u, v) = ((1.0 - l.l0).powi(2) * x, l.l0 * l.l0 * y);
             res[D] = u - v;
@@ -1833,13 +1844,14 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// last one is left as it is).
     fn ratios_from(prob: &Problem<D>, st: &State<D>, j0: usize, lam: &mut [f64]) {
         let n = st.t.len();
+        let mut carry = None;
         for (i, out) in lam.iter_mut().enumerate() {
             let j = j0 + i;
             if !prob.closed && j == n - 1 {
                 continue;
             }
             let l = Self::local(prob, st, j);
-            let jt = JointTerms::new(prob, j, &l);
+            let jt = JointTerms::new(prob, j, &l, &mut carry);
             let (a, b) = (jt.x.sqrt(), jt.y.sqrt());
             let lam = a / (a + b);
             *out = if lam.is_finite() {
