@@ -922,18 +922,11 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// The residual (and convergence measures) of the current state with the row scales of
     /// the stored factorization; returns the merit.
     fn residual_frozen(&mut self, prob: &Problem<D>, tol: f64, reuse: bool) -> f64 {
-        if reuse && self.raw.len() == self.res.len() {
-            return Self::residuals_from::<true>(
-                prob,
-                &self.state,
-                0,
-                &mut self.fact_scale,
-                &mut self.res,
-                &mut self.check,
-                tol,
-                RawIo::Read(&self.raw),
-            );
-        }
+        let raw = if reuse && self.raw.len() == self.res.len() {
+            RawIo::Read(&self.raw)
+        } else {
+            RawIo::Write(&mut [])
+        };
         Self::residuals::<true>(
             prob,
             &self.state,
@@ -941,7 +934,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             &mut self.res,
             &mut self.check,
             tol,
-            &mut [],
+            raw,
         )
     }
 
@@ -950,7 +943,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// (and left as they are); otherwise they are computed and stored there.
     ///
     /// `raw` (as long as `res`, or empty) receives what [`refreeze`](Self::refreeze) needs,
-    /// on curves cut in no halves only.
+    /// or gives the convergence test's floor scales, on curves cut in no halves only.
     fn residuals<const FROZEN: bool>(
         prob: &Problem<D>,
         st: &State<D>,
@@ -958,21 +951,12 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         res: &mut [[f64; B]],
         check: &mut [[f64; B]],
         tol: f64,
-        raw: &mut [Raw],
+        raw: RawIo,
     ) -> f64 {
         debug_assert!(scale.len() == st.t.len() && res.len() == st.t.len());
         debug_assert_eq!(check.len(), st.t.len());
         let Some(split) = Split::of(prob.closed, st.t.len()) else {
-            return Self::residuals_from::<FROZEN>(
-                prob,
-                st,
-                0,
-                scale,
-                res,
-                check,
-                tol,
-                RawIo::Write(raw),
-            );
+            return Self::residuals_from::<FROZEN>(prob, st, 0, scale, res, check, tol, raw);
         };
         let cuts = split.cuts();
         let [s0, s1, s2, s3] = split4(scale, cuts);
@@ -1573,7 +1557,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             &mut self.trial_res,
             &mut self.trial_check,
             tol,
-            &mut self.trial_raw,
+            RawIo::Write(&mut self.trial_raw),
         );
         if phi.is_nan() {
             f64::INFINITY

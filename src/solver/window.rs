@@ -745,7 +745,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             &mut self.trial_res,
             &mut self.trial_check,
             tol,
-            &mut [],
+            super::RawIo::Write(&mut []),
         );
         self.swap_trial_residuals();
     }
@@ -1020,7 +1020,7 @@ mod tests {
                 &mut res,
                 &mut fresh,
                 tol,
-                &mut [],
+                crate::solver::RawIo::Write(&mut []),
             );
             for (j, (a, b)) in fresh.iter().zip(&ws.check).enumerate() {
                 let inside = matches!(ws.window.slot[j], Slot::Window(_));
