@@ -1128,19 +1128,16 @@ fn shape_at(scheme: Scheme, shape: &Shape, i: usize) -> f64 {
 /// Validate the shape parameters of `m` points (read back by [`shape_at`], with no copy).
 fn check_shapes(scheme: Scheme, shape: &Shape, m: usize) -> Result<(), Error> {
     let (min, max) = scheme.shape_range();
-    if let Shape::PerPoint(v) = shape {
-        if v.len() != m {
+    // A uniform shape is checked once (as the first point's).
+    let count = match shape {
+        Shape::PerPoint(v) if v.len() != m => {
             return Err(Error::ShapeCount {
                 expected: m,
                 got: v.len(),
-            });
+            })
         }
-    }
-    // A uniform shape is checked once (as the first point's).
-    let count = if matches!(shape, Shape::PerPoint(_)) {
-        m
-    } else {
-        m.min(1)
+        Shape::PerPoint(_) => m,
+        Shape::Neutral | Shape::Global(_) => m.min(1),
     };
     for index in 0..count {
         let value = shape_at(scheme, shape, index);
