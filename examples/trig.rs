@@ -23,6 +23,7 @@ fn main() -> Result<(), kappa::Error> {
             .map(|s| match s.extremum() {
                 Extremum::Max => "max",
                 Extremum::Min => "min",
+                Extremum::Inflection => "inflection",
             })
             .collect();
         println!(

@@ -230,6 +230,12 @@ pub enum Extremum {
     /// |κ| is locally minimal there: the stationary point the scheme placed at the input
     /// point is a curvature minimum (εκ-trig with small `a` and gentle turns).
     Min,
+    /// The segment has collapsed onto its input point, which is an inflection of the curve:
+    /// the neighbouring segments meet there, tangent to each other (G1), with curvatures of
+    /// opposite signs. This is the limit of the curve as the point approaches the line
+    /// through its neighbours on a curve symmetric about it (a symmetric S or wave); see
+    /// [`Segment::is_collapsed`](crate::Segment::is_collapsed).
+    Inflection,
 }
 
 /// Peak parameters closer than this to 0 or 1 are classified as at the segment end.

@@ -118,7 +118,17 @@ impl Fitted {
     }
 }
 
-/// Fits cubic Béziers to a sequence of segments that join end to end.
+/// Whether a segment is a single point: zero derivative at both ends and the same point at
+/// its ends and middle.
+fn is_point<C: ParamCurveFit>(segment: &C) -> bool {
+    let (p0, d0) = segment.sample_pt_deriv(0.0);
+    let (p1, d1) = segment.sample_pt_deriv(1.0);
+    let (pm, _) = segment.sample_pt_deriv(0.5);
+    d0 == Vec2::ZERO && d1 == Vec2::ZERO && p0 == p1 && p0 == pm
+}
+
+/// Fits cubic Béziers to a sequence of segments that join end to end. A segment that is a
+/// single point gets no cubic.
 ///
 /// `closed` adds a `ClosePath`; the last segment should end where the first starts, and an
 /// end within the tolerance of the start is snapped onto it.
@@ -148,6 +158,15 @@ pub fn fit<C: ParamCurveFit>(
     let mut pieces: Vec<CubicBez> = Vec::new();
     for (index, segment) in segments.iter().enumerate() {
         pieces.clear();
+        if is_point(segment) {
+            // A segment collapsed onto a point (an inflection at an input point): nothing
+            // to draw.
+            if path.elements().is_empty() {
+                path.move_to(segment.sample_pt_deriv(0.0).0);
+            }
+            cubics.push(0);
+            continue;
+        }
         let piece = match options.method {
             FitMethod::Kurbo => fit_to_bezpath(segment, tolerance),
             FitMethod::KurboOptimized => fit_to_bezpath_opt(segment, tolerance),

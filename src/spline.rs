@@ -198,6 +198,36 @@ impl<P> Segment<P> {
     }
 }
 
+impl<P: PartialEq> Segment<P> {
+    /// Whether the segment has collapsed onto its input point: its three defining points
+    /// are that point. The input point is then an inflection of the curve, where the
+    /// neighbouring segments meet tangent to each other ([`Extremum::Inflection`]); the
+    /// segment has no length and contributes nothing to paths, combs or curvature maxima.
+    ///
+    /// It happens where an interior point lies on the line through its neighbours and the
+    /// curve is symmetric about it (a point-symmetric S or wave): as the point approaches
+    /// the line, the segment through it shrinks linearly to the point (see the solver's
+    /// notes in [`Solver`]).
+    ///
+    /// ```
+    /// use kappa::{Extremum, Spline};
+    /// use kurbo::Point;
+    ///
+    /// // A wave whose middle point lies on the line through its neighbours.
+    /// let wave = [(100.0, 300.0), (250.0, 200.0), (400.0, 300.0), (550.0, 400.0), (700.0, 300.0)]
+    ///     .map(Point::from);
+    /// let curve = Spline::kappa(&wave, false)?;
+    /// assert!(curve.converged());
+    /// let middle = &curve.segments()[1];
+    /// assert!(middle.is_collapsed());
+    /// assert_eq!(middle.extremum(), Extremum::Inflection);
+    /// # Ok::<(), kappa::Error>(())
+    /// ```
+    pub fn is_collapsed(&self) -> bool {
+        self.q[0] == self.q[1] && self.q[1] == self.q[2]
+    }
+}
+
 impl Segment<Point> {
     /// The control points: the Bézier control points (3 for κ, 4 for εκ-cubic), or for
     /// εκ-trig the five control points `P0..P4` of the quadratic trigonometric curve
@@ -274,6 +304,9 @@ impl Segment<Point> {
     /// Whether `|κ|` is maximal or minimal at `t_max` (see [`Extremum`]). κ and εκ-cubic
     /// segments always peak there; εκ-trig segments with `a` below about 0.61 may not.
     pub fn extremum(&self) -> Extremum {
+        if self.is_collapsed() {
+            return Extremum::Inflection;
+        }
         if self.scheme != Scheme::EkTrig {
             // The quadratic and the constrained cubic have one stationary point of |κ|, a
             // maximum (seed 000 §3); classifying it numerically fails on nearly straight
@@ -440,7 +473,11 @@ impl Spline<Point> {
             };
             return Ok(Fitted {
                 path,
-                cubics: vec![1; self.segments.len()],
+                cubics: self
+                    .segments
+                    .iter()
+                    .map(|s| usize::from(!s.is_collapsed()))
+                    .collect(),
                 tolerance,
                 max_distance: 0.0,
             });
@@ -466,6 +503,10 @@ impl Spline<Point> {
             let ps = seg.to_path_seg();
             if i == 0 {
                 path.move_to(ps.start());
+            }
+            if seg.is_collapsed() {
+                // An inflection at its input point: no length, nothing to draw.
+                continue;
             }
             match ps {
                 PathSeg::Line(l) => path.line_to(l.p1),
@@ -1043,6 +1084,23 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         if !prob.closed {
             segments[0].q[0] = P::from_coords(self.points[0]);
             segments[n - 1].q[2] = P::from_coords(self.points[self.points.len() - 1]);
+        }
+        // A segment that collapsed onto its input point (within the tolerance) is that
+        // point, and its neighbours meet there.
+        if report.converged {
+            let off = if prob.closed { 0 } else { 1 };
+            for j in 0..n {
+                if self.ws.is_collapsed(prob, j, self.options.tolerance) {
+                    let p = P::from_coords(self.points[j + off]);
+                    segments[j].q = [p; 3];
+                    if j > 0 || prob.closed {
+                        segments[(j + n - 1) % n].q[2] = p;
+                    }
+                    if j + 1 < n || prob.closed {
+                        segments[(j + 1) % n].q[0] = p;
+                    }
+                }
+            }
         }
         Spline {
             scheme: self.scheme,

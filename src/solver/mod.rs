@@ -47,6 +47,15 @@ const LAMBDA_MIN: f64 = 1e-12;
 /// The largest rounding floor granted to a near-degenerate joint (see
 /// [`Workspace::check_row`]): its relative |κ| mismatch still has to be below this.
 const MAX_FLOOR: f64 = 1e-6;
+/// The largest rounding floor granted to a row made of a ratio near 1 (see
+/// [`Workspace::check_scales`]): `1 - λ` carries a relative error of about `ε/(1 - λ)`,
+/// which this caps where `1 - λ` is as small as [`LAMBDA_MIN`] allows.
+const RATIO_FLOOR: f64 = 1e-3;
+/// A segment counts as shrinking towards its input point when `1 - λ_{j-1}` and `λ_j` are
+/// both below this: its rows get the floors of [`RATIO_FLOOR`]'s doc. (A single ratio near
+/// 1 is a curve heading elsewhere: relaxing its rows there measured worse window
+/// re-solves.)
+const RATIO_NEAR_ONE: f64 = 1e-4;
 /// Iterations of the classic loop used to start Newton from a cold start, one attempt each.
 const CLASSIC_STARTS: [usize; 3] = [3, 1, 12];
 /// Classic iterations that start the first solve of a continuation.
@@ -57,7 +66,7 @@ const MIN_STEP: f64 = 1e-6;
 const ATTEMPT_BUDGET: usize = 30;
 /// Shape parameters where the solver converges most reliably (measured on the drawings of
 /// the εκ paper), the starts of the continuation fallbacks, tried in this order.
-const A_HOMES: [f64; 3] = [0.85, 0.75, 0.95];
+const A_HOMES: [f64; 4] = [0.85, 0.75, 0.95, 0.7];
 /// The same for trigonometric segments, plus a start below the usual targets: their
 /// solution branches coming from large `a` can fold just above `a = 0.65` (a peak moving
 /// into a segment end), where the branch coming from small `a` (peak at the end) goes on.
@@ -134,6 +143,59 @@ const T_LANDING: f64 = 1e-9;
 fn lambda_valid(lam: f64) -> bool {
     lam > 0.0 && lam < 1.0 + 1e-15
 }
+
+/// Whether a step `dl` pushes ratio `j` further out of its range where it sits at its bound
+/// ([`LAMBDA_MIN`] from 0 or 1) as part of a segment collapsing onto its input point (see
+/// [`collapsed`]): `λ_j → 1` with `λ_{j+1} → 0` (the next segment collapses), or `λ_j → 0`
+/// with `λ_{j-1} → 1` (this one does). Such a ratio is held where it is and the rest of the
+/// step is taken: cutting every step to keep it inside would stall Newton there. A ratio at
+/// its bound without the partner (a curve heading elsewhere) is not held. Indices wrap
+/// (the fixed last ratio of an open curve, exactly 1, is never held).
+#[inline(always)]
+fn pinned<const D: usize>(st: &State<D>, j: usize, dl: f64) -> bool {
+    let l = st.lam[j];
+    if l > 2.0 * LAMBDA_MIN && l < 1.0 - 2.0 * LAMBDA_MIN {
+        return false;
+    }
+    pinned_at_bound(st, j, dl)
+}
+
+/// [`pinned`] for a ratio at a bound.
+#[cold]
+fn pinned_at_bound<const D: usize>(st: &State<D>, j: usize, dl: f64) -> bool {
+    let lam = &st.lam;
+    let n = lam.len();
+    let l = lam[j];
+    let next = |i: usize| if i + 1 == n { 0 } else { i + 1 };
+    let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
+    // The segment that collapses, and its control polygon's turn.
+    let corner = |i: usize| {
+        let (u, v) = (sub(st.c[i], st.c[prev(i)]), sub(st.c[next(i)], st.c[i]));
+        nearly_straight(dot(u, u), dot(v, v), dot(u, v))
+    };
+    if dl > 0.0 && (1.0 - 2.0 * LAMBDA_MIN..1.0).contains(&l) {
+        lam[next(j)] <= PARTNER && corner(next(j))
+    } else if dl < 0.0 && l <= 2.0 * LAMBDA_MIN {
+        lam[prev(j)] >= 1.0 - PARTNER && corner(j)
+    } else {
+        false
+    }
+}
+
+/// Whether the turn between edges `u` and `v` (given `u·u`, `v·v`, `u·v`) has a sine below
+/// [`STRAIGHTISH`] and goes forward: the control polygon of a segment collapsing at an
+/// inflection turns by `O(1 - λ)` (see [`collapsed`]); a segment shrinking at a real
+/// corner is a curve heading to another solution.
+#[inline]
+fn nearly_straight(uu: f64, vv: f64, uv: f64) -> bool {
+    uv > 0.0 && uu * vv - uv * uv <= STRAIGHTISH * STRAIGHTISH * uu * vv
+}
+
+/// See [`nearly_straight`].
+const STRAIGHTISH: f64 = 1e-4;
+
+/// How close to its bound the partner of a held ratio must be (see [`pinned`]).
+const PARTNER: f64 = 1e-6;
 
 #[inline]
 fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {
@@ -914,7 +976,11 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         for (i, (((s, c), lam), t)) in blocks {
             let j = j0 + i;
             *c = core::array::from_fn(|k| st.c[j][k] + scale * s[k]);
-            *lam = st.lam[j] + scale * s[D];
+            *lam = if pinned(st, j, s[D]) {
+                st.lam[j]
+            } else {
+                st.lam[j] + scale * s[D]
+            };
             *t = (st.t[j] + scale * s[D + 1]).clamp(0.0, 1.0);
             ok &= lambda_valid(*lam);
         }
@@ -1371,7 +1437,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         for j in 0..n {
             let dl = self.step[j * B + D];
             let l = st.lam[j];
-            if dl < 0.0 {
+            if pinned(st, j, dl) {
+                // Held at its bound by `step_from` (a collapsing segment).
+            } else if dl < 0.0 {
                 smax = smax.min(0.99 * (l - LAMBDA_MIN) / -dl);
             } else if dl > 0.0 {
                 smax = smax.min(0.99 * (1.0 - LAMBDA_MIN - l) / dl);
@@ -1522,7 +1590,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
 
     /// The scales [`check_row`](Self::check_row) applies to the G2 and the peak row of a
     /// block: the tolerance over each row's rounding floor, at most 1.
-    #[inline]
+    #[inline(always)]
     fn check_scales(loc: &Local<D>, tol: f64) -> [f64; 2] {
         // The control polygon's edges into and out of `c_j` and out of `c_{j+1}`.
         let (a, b, e) = (
@@ -1543,7 +1611,70 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             .sqrt();
         let floor = ROUNDING_FLOOR / local.max(f64::MIN_POSITIVE);
         let g2_floor = floor.max((ROUNDING_FLOOR * area).min(MAX_FLOOR));
-        [(tol / g2_floor).min(1.0), (tol / floor).min(1.0)]
+        let scales = [(tol / g2_floor).min(1.0), (tol / floor).min(1.0)];
+        let (own, next) = (1.0 - loc.lm, 1.0 - loc.l0);
+        if own < RATIO_NEAR_ONE || next < RATIO_NEAR_ONE {
+            Self::shrinking_scales(loc, tol, scales, [a, b, e], [floor, g2_floor])
+        } else {
+            scales
+        }
+    }
+
+    /// [`check_scales`](Self::check_scales) where a ratio is near 1.
+    ///
+    /// A ratio near 1 is known to an absolute rounding error ~ε, so `1 - λ` to a relative
+    /// one ~ε/(1 - λ). Where a segment shrinks towards its input point (`1 - λ_{j-1}` and
+    /// `λ_j` both small, at a nearly straight turn of the control polygon: an inflection,
+    /// [`collapsed`]) its start leg `r = (1 - λ_{j-1}) (c_j - c_{j-1})` and the G2 terms of
+    /// its two joints are no more precise than that. Once it has collapsed, its peak row and
+    /// both its G2 rows count as met.
+    #[cold]
+    fn shrinking_scales(
+        loc: &Local<D>,
+        tol: f64,
+        scales: [f64; 2],
+        [a, b, e]: [[f64; D]; 3],
+        [floor, g2_floor]: [f64; 2],
+    ) -> [f64; 2] {
+        let (own, next) = (1.0 - loc.lm, 1.0 - loc.l0);
+        let (aa, bb, ee) = (dot(a, a), dot(b, b), dot(e, e));
+        let (ab, be) = (dot(a, b), dot(b, e));
+        let (na, nb, ne) = (aa.sqrt(), bb.sqrt(), ee.sqrt());
+        if collapsed(own, loc.l0, na, nb, aa, bb, ab, tol) {
+            return [0.0, 0.0];
+        }
+        let shrinking = |r: f64, partner: f64, straight: bool| {
+            if r < RATIO_NEAR_ONE && partner < RATIO_NEAR_ONE && straight {
+                (ROUNDING_FLOOR / r.max(f64::MIN_POSITIVE)).min(RATIO_FLOOR)
+            } else {
+                0.0
+            }
+        };
+        let own_floor = shrinking(own, loc.l0, nearly_straight(aa, bb, ab));
+        let next_floor = shrinking(next, loc.l1, nearly_straight(bb, ee, be));
+        if own_floor == 0.0 && next_floor == 0.0 {
+            return scales;
+        }
+        let floor = floor.max(own_floor);
+        let g2_floor = g2_floor.max(floor).max(next_floor);
+        let mut scales = [(tol / g2_floor).min(1.0), (tol / floor).min(1.0)];
+        if collapsed(next, loc.l1, nb, ne, bb, ee, be, tol) {
+            scales[0] = 0.0;
+        }
+        scales
+    }
+
+    /// Whether block `j`'s segment has collapsed onto its input point (see [`collapsed`]).
+    pub(crate) fn is_collapsed(&self, prob: &Problem<D>, j: usize, tol: f64) -> bool {
+        let st = &self.state;
+        if st.ratio(prob, j as isize - 1) < 1.0 - RATIO_NEAR_ONE || st.lam[j] > RATIO_NEAR_ONE {
+            return false;
+        }
+        let loc = Self::local(prob, st, j);
+        let (a, b) = (sub(loc.c0, loc.cm), sub(loc.c1, loc.c0));
+        let (aa, bb) = (dot(a, a), dot(b, b));
+        let (own, l0) = (1.0 - loc.lm, loc.l0);
+        collapsed(own, l0, aa.sqrt(), bb.sqrt(), aa, bb, dot(a, b), tol)
     }
 
     /// Merit `½|R|²` of the trial state, with row scales computed at the trial state (which
@@ -1979,6 +2110,37 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             }
             *d = dj;
         }
+    }
+}
+
+/// Whether a segment has collapsed onto its input point at a straight joint: the limit of
+/// an inflection through an input point.
+///
+/// When an interior point `p_j` lies on the line through its neighbours and the curve is
+/// symmetric about it (a point-symmetric S or wave), the segment through `p_j` shrinks to
+/// `p_j` as the point approaches the line: with `α = 1 - λ_{j-1}` and `β = λ_j` its legs
+/// are `r = α (c_j - c_{j-1})` and `s = β (c_{j+1} - c_j)`, and the G2 conditions at its two
+/// joints (`α² X = β T_j`, `α T_j = β² Y` up to `O(α)`, seed 000 eqs. 8–10) give
+/// `T_j ∝ α`, `β ∝ α`: the segment's extent, the turn of the control polygon at `c_j` and
+/// `c_j - p_j` all vanish linearly with the offset (measured on the wave
+/// `(100,300) … (700,300)`: offsets 1 → 1e-3 take the segment's span from 2.5 to 0.003 with
+/// its peak parameter fixed near 0.784, or 0.216 from the other side). The limit curve is
+/// the two neighbouring segments meeting at `p_j`, tangent to the line `c_{j-1} c_{j+1}`:
+/// an inflection at the input point, G1 there and G2 everywhere else. Without the
+/// symmetry the segment does not collapse: the peak moves to a segment end (`t_j = 0` or 1)
+/// and `p_j` is the joint.
+///
+/// The collapsed state satisfies the block's equations only in the limit `α = β = 0`, which
+/// the ratios cannot reach (they stay at least [`LAMBDA_MIN`] inside `(0, 1)`). So it is
+/// recognized: the segment spans `α |c_j - c_{j-1}| + β |c_{j+1} - c_j|` at most `tol`
+/// (normalized coordinates), and the polygon's turn at `c_j` has a sine of at most `tol`
+/// (G1). Its peak row and the G2 rows of its two joints then count as met.
+#[inline]
+#[allow(clippy::too_many_arguments)]
+fn collapsed(alpha: f64, beta: f64, nu: f64, nv: f64, uu: f64, vv: f64, uv: f64, tol: f64) -> bool {
+    alpha * nu + beta * nv <= tol && {
+        let cross2 = (uu * vv - uv * uv).max(0.0);
+        uv > 0.0 && cross2 <= tol * tol * uu * vv
     }
 }
 

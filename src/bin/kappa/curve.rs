@@ -316,6 +316,7 @@ pub fn curve_output(spline: &Spline) -> Result<CurveOutput> {
             extremum: match s.extremum() {
                 Extremum::Max => "max",
                 Extremum::Min => "min",
+                Extremum::Inflection => "inflection",
             },
         })
         .collect();
