@@ -722,6 +722,14 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         self.options
     }
 
+    /// Changes the options for the next solves (the last solution is kept: a warm re-solve
+    /// still starts from it). An interactive caller can lower
+    /// [`SolveOptions::max_iterations`] while a drag is in progress, so that a solve that
+    /// will not converge stays within a frame, and raise it again at the end.
+    pub fn set_options(&mut self, options: SolveOptions) {
+        self.options = options;
+    }
+
     /// Solve from scratch.
     pub fn solve(
         &mut self,

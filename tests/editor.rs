@@ -168,7 +168,9 @@ fn apply(e: &mut Editor, op: &Op) {
         Op::DragShape(i, a) => {
             e.drag_shape(i % n, a);
         }
-        Op::EndDrag => e.end_drag(),
+        Op::EndDrag => {
+            e.end_drag();
+        }
         Op::Insert(x, y) => {
             e.insert_on_curve(Point::new(x, y));
         }
@@ -208,6 +210,10 @@ proptest! {
         for op in &ops {
             apply(&mut e, op);
             check(&e);
+            // Never a blank: every piece shows a curve, whatever failed.
+            for k in 0..e.pieces() {
+                prop_assert!(e.piece_spline(k).is_some(), "piece {} blank after {:?}", k, op);
+            }
             if !matches!(op, Op::Undo | Op::Redo) {
                 history.push((e.doc().clone(), e.to_bezpath()));
             }
@@ -576,4 +582,152 @@ fn svg_import_and_export() {
         again[0].points.first().unwrap().point(),
         Point::new(10.0, 10.0)
     );
+}
+
+/// The κ-curve through a dense open sine (40 samples of `(10 i, 50 sin 0.3 i)`) does not
+/// converge (README, "Known limits"): a solve that fails for sure.
+fn failing_sine(n: usize) -> PathDoc {
+    PathDoc {
+        points: (0..n)
+            .map(|i| EditPoint {
+                x: 10.0 * i as f64,
+                y: 300.0 + 50.0 * (0.3 * i as f64).sin(),
+                // Ignored by κ; εκ-cubic with it converges.
+                shape: 0.8,
+                corner: false,
+            })
+            .collect(),
+        closed: false,
+        scheme: Scheme::Kappa,
+    }
+}
+
+#[test]
+fn a_solve_that_fails_shows_its_best_curve_flagged_also_after_undo_and_redo() {
+    let (mut e, change) = Editor::from_doc(failing_sine(40));
+    assert_eq!(change.errors.len(), 1);
+    let kappa::Error::NotConverged { residual, .. } = change.errors[0].1 else {
+        panic!("{:?}", change.errors);
+    };
+    assert!(residual > 1e-12 && residual.is_finite());
+    // Drawn: the best iterate, through the points' neighbourhood, flagged.
+    let shown = e.to_bezpath();
+    assert!(shown.segments().count() >= 38);
+    assert!(shown
+        .elements()
+        .iter()
+        .all(|el| el.end_point().is_some_and(|p| p.is_finite())));
+    assert!(matches!(
+        e.piece_error(0),
+        Some(kappa::Error::NotConverged { .. })
+    ));
+    // An edit that solves, then undo into the failed state: its curve and message return.
+    let p = e.doc().points[20].point();
+    let c = e.set_scheme(Scheme::EkCubic);
+    assert!(c.errors.is_empty(), "{c:?}");
+    assert!(e.undo());
+    assert_eq!(e.to_bezpath(), shown);
+    assert!(matches!(
+        e.errors()[..],
+        [(0, kappa::Error::NotConverged { .. })]
+    ));
+    assert!(e.redo() && e.errors().is_empty());
+    assert!(e.undo());
+    assert_eq!(e.doc().points[20].point(), p);
+    assert_eq!(e.errors().len(), 1);
+}
+
+#[test]
+fn drag_updates_of_a_failing_long_path_are_capped_and_finished_at_the_end() {
+    let (mut e, _) = Editor::from_doc(failing_sine(300));
+    let p = e.doc().points[150].point();
+    let cap = kappa::editor::DRAG_WORK / 300;
+    for k in 1..=5 {
+        let c = e.drag_point(150, p + kurbo::Vec2::new(0.0, k as f64));
+        // Each update stays within the drag budget, and still shows a curve.
+        assert!(
+            c.iterations <= cap,
+            "update {k}: {} iterations",
+            c.iterations
+        );
+        assert_eq!(c.errors.len(), 1);
+        assert!(e.piece_spline(0).is_some());
+    }
+    // Mouse up: the flagged piece is solved again with the full budget.
+    let done = e.end_drag();
+    assert_eq!(done.resolved, [0]);
+    assert!(done.iterations > cap, "{done:?}");
+    assert!(e.piece_spline(0).is_some());
+}
+
+#[test]
+fn insert_on_curve_never_repeats_a_point() {
+    let mut e = Editor::new(Scheme::Kappa);
+    for p in [(100.0, 100.0), (200.0, 150.0), (300.0, 100.0)] {
+        e.add_point(Point::from(p));
+    }
+    let (doc, path) = (e.doc().clone(), e.to_bezpath());
+    // Beyond the open end: the nearest curve point is the end point itself.
+    assert_eq!(e.insert_on_curve(Point::new(350.0, 80.0)), None);
+    assert_eq!(e.doc(), &doc);
+    assert_eq!(e.to_bezpath(), path);
+    // Between points it inserts.
+    let (at, c) = e.insert_on_curve(Point::new(150.0, 140.0)).unwrap();
+    assert!(c.errors.is_empty() && !c.rejected);
+    assert_eq!(at, 1);
+}
+
+#[test]
+fn structural_edits_that_would_blank_a_piece_are_rejected() {
+    let mut e = Editor::new(Scheme::EkCubic);
+    for p in wave(8) {
+        e.add_point(p);
+    }
+    let (doc, path) = (e.doc().clone(), e.to_bezpath());
+    // A point added on top of the last one: the piece would have no curve.
+    let last = doc.points.last().unwrap().point();
+    let c = e.add_point(last);
+    assert!(c.rejected, "{c:?}");
+    assert!(matches!(
+        c.errors[..],
+        [(_, kappa::Error::RepeatedPoint { .. })]
+    ));
+    assert_eq!(e.doc(), &doc);
+    assert_eq!(e.to_bezpath(), path);
+    // Deleting the point between two that coincide.
+    let mut twin = doc.clone();
+    twin.points[4] = twin.points[2];
+    let (mut e2, _) = Editor::from_doc(twin.clone());
+    let before = e2.to_bezpath();
+    let c = e2.delete_point(3);
+    assert!(c.rejected && e2.doc() == &twin && e2.to_bezpath() == before);
+    // Nothing was pushed on the undo stack by the rejected edits.
+    assert!(e.undo());
+    assert_eq!(e.doc().points.len(), 7);
+}
+
+#[test]
+fn non_finite_edits_are_rejected_and_documents_round_trip() {
+    let mut e = Editor::new(Scheme::EkTrig);
+    for p in wave(6) {
+        e.add_point(p);
+    }
+    let doc = e.doc().clone();
+    for c in [
+        e.add_point(Point::new(f64::NAN, 1.0)),
+        e.move_point(2, Point::new(1.0, f64::INFINITY)),
+        e.drag_point(3, Point::new(f64::NEG_INFINITY, 0.0)),
+        e.set_shape(1, f64::NAN),
+        e.drag_shape(1, f64::INFINITY),
+    ] {
+        assert!(c.rejected, "{c:?}");
+        assert_eq!(e.doc(), &doc);
+    }
+    e.end_drag();
+    #[cfg(feature = "serde")]
+    {
+        let text = serde_json::to_string(e.doc()).unwrap();
+        let back: PathDoc = serde_json::from_str(&text).unwrap();
+        assert_eq!(&back, e.doc());
+    }
 }

@@ -63,9 +63,9 @@ pub extern "C" fn kp_drag_point(i: u32, x: f64, y: f64) -> u32 {
     with(|s| s.drag_point(index(i), x, y))
 }
 
-/// Ends the drag gesture.
+/// Ends the drag gesture; the number of pieces that failed to solve.
 #[no_mangle]
-pub extern "C" fn kp_end_drag() {
+pub extern "C" fn kp_end_drag() -> u32 {
     with(|s| s.end_drag())
 }
 
@@ -186,6 +186,12 @@ pub extern "C" fn kp_nearest_point(x: f64, y: f64, radius: f64) -> i32 {
 #[no_mangle]
 pub extern "C" fn kp_path() -> u32 {
     with(|s| len(s.fill_path()))
+}
+
+/// Encodes piece `k` into the path buffer ([`Session::fill_piece_path`]).
+#[no_mangle]
+pub extern "C" fn kp_piece_path(k: u32) -> u32 {
+    with(|s| len(s.fill_piece_path(index(k))))
 }
 
 /// Encodes the curvature comb ([`Session::fill_comb`]).

@@ -163,9 +163,15 @@ impl Session {
         self.record(c)
     }
 
-    /// Ends the drag gesture.
-    pub fn end_drag(&mut self) {
-        self.editor.end_drag();
+    /// Ends the drag gesture (pieces its capped updates left unconverged are solved with
+    /// the full budget); returns the number of pieces that failed to solve.
+    pub fn end_drag(&mut self) -> u32 {
+        let c = self.editor.end_drag();
+        if !c.resolved.is_empty() {
+            self.last = c;
+        }
+        self.last.errors = self.editor.errors();
+        self.last.errors.len() as u32
     }
 
     /// Deletes point `i`.
@@ -205,16 +211,26 @@ impl Session {
         self.record(c)
     }
 
-    /// Undoes the last edit; whether there was one.
+    /// Undoes the last edit; whether there was one. The errors of the restored state are
+    /// the last change's (an unconverged curve is flagged again).
     pub fn undo(&mut self) -> bool {
-        self.last = Change::default();
-        self.editor.undo()
+        let done = self.editor.undo();
+        self.last = Change {
+            errors: self.editor.errors(),
+            ..Change::default()
+        };
+        done
     }
 
-    /// Redoes the last undone edit; whether there was one.
+    /// Redoes the last undone edit; whether there was one (errors as for
+    /// [`Session::undo`]).
     pub fn redo(&mut self) -> bool {
-        self.last = Change::default();
-        self.editor.redo()
+        let done = self.editor.redo();
+        self.last = Change {
+            errors: self.editor.errors(),
+            ..Change::default()
+        };
+        done
     }
 
     /// The numbers of the last query.
@@ -325,6 +341,14 @@ impl Session {
         self.path.len()
     }
 
+    /// Encodes piece `k` ([`Editor::piece_bezpath`]) into the path buffer; the count of
+    /// numbers.
+    pub fn fill_piece_path(&mut self, k: usize) -> usize {
+        self.path.clear();
+        encode_path(&self.editor.piece_bezpath(k), &mut self.path);
+        self.path.len()
+    }
+
     /// Encodes the curvature comb ([`Editor::curvature_comb`]); the count of numbers.
     pub fn fill_comb(&mut self, scale: f64, samples: usize) -> usize {
         self.comb.clear();
@@ -353,7 +377,12 @@ impl Session {
             .last
             .errors
             .iter()
-            .map(|(k, e)| format!("piece {k}: {e}"))
+            .map(|(k, e)| match e {
+                kappa::Error::NotConverged { .. } => {
+                    format!("piece {k}: {e}; showing the closest curve found")
+                }
+                _ => format!("piece {k}: {e}"),
+            })
             .collect();
         self.bytes = text.join("\n").into_bytes();
         self.bytes.len()
@@ -478,8 +507,12 @@ mod tests {
         // A hit on the curve: distance zero at a point of the curve.
         assert_eq!(s.hit(p.x + 10.0, p.y), 6);
         assert!(s.nums()[5] < 1e-6);
+        // No insertion on top of a point (the hit above is point 2 itself).
+        assert_eq!(s.insert_point(p.x + 10.0, p.y), None);
         // Insert on the curve, then errors: a point dragged onto its neighbour.
-        let at = s.insert_point(p.x + 10.0, p.y).unwrap();
+        let (a, b) = (star(8)[2] + kurbo::Vec2::new(10.0, 0.0), star(8)[3]);
+        let mid = a.midpoint(b);
+        let at = s.insert_point(mid.x, mid.y).unwrap();
         assert_eq!(s.editor().doc().points.len(), 9);
         let q = s.editor().doc().points[at + 1].point();
         assert_eq!(s.drag_point(at, q.x, q.y), 1);

@@ -81,6 +81,10 @@ async function checkCurve(drawnTol) {
     let worst = 0, worstPeak = 0, worstJoint = 0, segments = 0;
     const bad = [];
     const d = (a, p) => Math.hypot(a.x - p.x, a.y - p.y);
+    const collapsed = (pk, j) => {
+      const [a, m, b] = [0, 0.5, 1].map((t) => k.evalCurve(pk, j, t));
+      return d(a, m) === 0 && d(m, b) === 0;
+    };
     pieces.forEach((piece, pk) => {
       if (piece.failed) bad.push(`piece ${pk} failed: ${k.lastError()}`);
       const q = piece.points.map((i) => pts[i]);
@@ -103,9 +107,12 @@ async function checkCurve(drawnTol) {
             worstPeak = Math.max(worstPeak, excess / kmax);
           }
         }
-        if (piece.closed || j + 1 < n) {
+        // |κ| is continuous at every joint; a segment collapsed onto its point (an
+        // inflection through the point) is stepped over.
+        const next = collapsed(pk, (j + 1) % n) ? (j + 2) % n : (j + 1) % n;
+        if (!collapsed(pk, j) && (piece.closed || next > j)) {
           const a = Math.abs(k.evalCurve(pk, j, 1).curvature);
-          const b = Math.abs(k.evalCurve(pk, (j + 1) % n, 0).curvature);
+          const b = Math.abs(k.evalCurve(pk, next, 0).curvature);
           worstJoint = Math.max(worstJoint, Math.abs(a - b) / kmax);
         }
       }
@@ -356,4 +363,57 @@ test("drag latency on a 100-point path", async () => {
       `${scheme}: median drag update ${engine.p50} ms, target < ${LATENCY_TARGET_MS} ms`);
   }
   assert.deepEqual(page.problems, []);
+});
+
+// The first shapes a designer clicks: a wave whose middle point lies on the line through
+// its neighbours, and a point-symmetric S (an inflection through an input point each).
+const WAVE = [[100, 300], [250, 200], [400, 300], [550, 400], [700, 300]];
+const S_CURVE = [[560, 150], [450, 95], [340, 150], [360, 250], [450, 300], [540, 350],
+  [560, 450], [450, 505], [340, 450]];
+
+test("a clicked wave and a symmetric S are drawn in every scheme", async () => {
+  const o = await canvasOrigin();
+  for (const scheme of ["kappa", "ek-cubic", "ek-trig"]) {
+    for (const shape of [WAVE, S_CURVE]) {
+      await page.evaluate((s) => window.kappa.reset(s), scheme);
+      await page.selectOption("#scheme", scheme);
+      for (const [x, y] of shape) await page.mouse.click(o.x + x, o.y + y);
+      await page.mouse.move(o.x + 880, o.y + 580);
+      const r = await checkCurve(DRAWN_TOL[scheme]);
+      assert.equal(r.pieces, 1, `${scheme}`);
+      assert.equal(await page.evaluate(() => window.kappa.lastError()), "", `${scheme}`);
+      const drawn = await page.evaluate(() => window.kappa.pathElements().length);
+      assert.ok(drawn >= shape.length - 3, `${scheme}: ${drawn} path elements`);
+    }
+  }
+  fs.writeFileSync(path.join(OUT, "web-s-curve.png"), await page.locator("#canvas").screenshot());
+});
+
+test("a solve that does not converge shows its best curve, flagged, and undo brings it back", async () => {
+  // The κ-curve of a dense sine (40 samples) does not converge.
+  const pts = Array.from({ length: 40 }, (_, i) => [20 + 21 * i, 300 + 100 * Math.sin(0.3 * i)]);
+  const r = await page.evaluate((pts) => {
+    const k = window.kappa;
+    k.reset("kappa");
+    for (const [x, y] of pts) k.addPoint(x, y);
+    return { error: k.lastError(), pieces: k.pieces(), elements: k.pathElements().length,
+      status: k.status() };
+  }, pts);
+  assert.match(r.error, /did not converge/);
+  assert.ok(r.pieces[0].failed && r.elements >= 30, `${r.elements} path elements`);
+  assert.match(r.status, /did not converge/);
+  fs.writeFileSync(path.join(OUT, "web-unconverged.png"), await page.locator("#canvas").screenshot());
+  // An edit that solves (εκ-cubic), then undo into the failed state: curve and message return.
+  const back = await page.evaluate(() => {
+    const k = window.kappa;
+    for (let i = 0; i < 40; i++) k.setShape(i, 0.8);
+    k.setScheme("ek-cubic");
+    const solved = k.lastError();
+    k.undo();
+    return { solved, error: k.lastError(), failed: k.pieces()[0].failed,
+      elements: k.pathElements().length };
+  });
+  assert.equal(back.solved, "");
+  assert.match(back.error, /did not converge/);
+  assert.ok(back.failed && back.elements >= 30);
 });

@@ -8,6 +8,7 @@ const combSamples = (n) => Math.max(8, Math.min(32, Math.round(480 / Math.max(n,
 const COMB_LENGTH = 50;       // longest comb tooth, px (set after each edit, kept while dragging)
 const PICK_RADIUS = 8;        // px around a point that grabs it
 const INSERT_RADIUS = 10;     // px around the curve where Shift+click inserts
+const WARNING_COLOR = "#e07000"; // a piece whose solve did not converge (its best curve)
 
 const $ = (id) => document.getElementById(id);
 const canvas = $("canvas");
@@ -53,6 +54,17 @@ function draw() {
   ctx.lineWidth = 2;
   ctx.lineJoin = "round";
   ctx.stroke();
+  // Pieces whose solve did not converge show their best curve, in a warning style.
+  engine.pieces().forEach((piece, k) => {
+    if (!piece.failed) return;
+    ctx.beginPath();
+    tracePath(ctx, engine.piecePathData(k));
+    ctx.strokeStyle = WARNING_COLOR;
+    ctx.lineWidth = 2.5;
+    ctx.setLineDash([8, 5]);
+    ctx.stroke();
+    ctx.setLineDash([]);
+  });
   const pts = engine.points();
   pts.forEach((p, i) => {
     const r = i === ui.selected ? 6 : 4.5;

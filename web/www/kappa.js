@@ -42,7 +42,7 @@ export class Engine {
   insertPoint(x, y) { return this.x.kp_insert_point(x, y); }
   movePoint(i, x, y) { return this.x.kp_move_point(i, x, y); }
   dragPoint(i, x, y) { return this.x.kp_drag_point(i, x, y); }
-  endDrag() { this.x.kp_end_drag(); }
+  endDrag() { return this.x.kp_end_drag(); }
   deletePoint(i) { return this.x.kp_delete_point(i); }
   setShape(i, a) { return this.x.kp_set_shape(i, a); }
   dragShape(i, a) { return this.x.kp_drag_shape(i, a); }
@@ -108,6 +108,10 @@ export class Engine {
   // The encoded path and comb as Float64Array views (valid until the next engine call).
   pathData() {
     const n = this.x.kp_path();
+    return this.f64(this.x.kp_path_ptr(), n);
+  }
+  piecePathData(k) {
+    const n = this.x.kp_piece_path(k);
     return this.f64(this.x.kp_path_ptr(), n);
   }
   combData(scale, samples) {
