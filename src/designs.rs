@@ -11,6 +11,7 @@ pub const BUILTIN_DESIGNS: &[(&str, &str)] = &[
     ("pumpkin", include_str!("../data/designs/pumpkin.json")),
     ("rabbit", include_str!("../data/designs/rabbit.json")),
     ("rose", include_str!("../data/designs/rose.json")),
+    ("designer", include_str!("../data/designs/designer.json")),
     (
         "eps-ClosedEkcurveKTM1",
         include_str!("../data/designs/eps-ClosedEkcurveKTM1.json"),

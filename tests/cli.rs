@@ -605,7 +605,7 @@ fn cli_gallery() {
     assert!(out.status.success(), "{}", stderr(&out));
     let printed: Vec<String> = stdout(&out).lines().map(str::to_owned).collect();
     let mut expected = Vec::new();
-    for name in ["bear", "elephant", "bird"] {
+    for name in ["bear", "elephant", "bird", "designer"] {
         expected.push(format!("{name}.png"));
         for variant in ["kappa", "ek-0.75", "ek-0.85", "ek-0.95"] {
             expected.push(format!("{name}-{variant}.svg"));

@@ -93,13 +93,8 @@ fn check_spline(spline: &Spline, points: &[Point], closed: bool, size: f64, what
         }
     }
     // Joints: G1 and equal |κ|.
-    let joints = if closed {
-        segs.len()
-    } else {
-        segs.len().saturating_sub(1)
-    };
-    for j in 0..joints {
-        let (a, b) = (&path_segs[j], &path_segs[(j + 1) % segs.len()]);
+    for (j, k) in common::joints_across_collapsed(segs, closed) {
+        let (a, b) = (&path_segs[j], &path_segs[k]);
         assert_eq!(a.eval(1.0), b.eval(0.0), "{what} joint {j}: gap");
         let cross = tangent(a, 1.0).cross(tangent(b, 0.0));
         let dot = tangent(a, 1.0).dot(tangent(b, 0.0));
@@ -116,7 +111,7 @@ fn check_spline(spline: &Spline, points: &[Point], closed: bool, size: f64, what
             curvature(&(at * *a), 1.0).abs(),
             curvature(&(at * *b), 0.0).abs(),
         );
-        let (sa, sb) = (&segs[j], &segs[(j + 1) % segs.len()]);
+        let (sa, sb) = (&segs[j], &segs[k]);
         let handle = dist(sa.q[1], sa.q[2]).min(dist(sb.q[0], sb.q[1]));
         let mag =
             sa.q.iter()

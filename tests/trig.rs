@@ -70,6 +70,11 @@ fn check_trig(s: &Spline, points: &[Point], closed: bool, what: &str) {
     for (j, ((seg, c), &p)) in segs.iter().zip(&curves).zip(interior).enumerate() {
         let t = seg.t_max;
         assert!((c.eval(t) - p).hypot() <= 1e-9 * size, "{what}: point {j}");
+        if seg.is_collapsed() {
+            // An inflection through the point: no length, no peak (tests/inflection.rs).
+            assert_eq!(seg.extremum(), Extremum::Inflection, "{what}: point {j}");
+            continue;
+        }
         let k = c.curvature(t).abs();
         if t > 1e-6 && t < 1.0 - 1e-6 {
             // d|κ|/dt = 0 at t_max: the extremum found by searching the exact curve is there,
@@ -98,9 +103,8 @@ fn check_trig(s: &Spline, points: &[Point], closed: bool, what: &str) {
             }
         }
     }
-    let joints = if closed { segs.len() } else { segs.len() - 1 };
-    for j in 0..joints {
-        let (a, b) = (&curves[j], &curves[(j + 1) % segs.len()]);
+    for (j, k) in common::joints_across_collapsed(segs, closed) {
+        let (a, b) = (&curves[j], &curves[k]);
         assert!(
             (a.end() - b.start()).hypot() <= 1e-12 * size,
             "{what}: joint {j}"

@@ -1664,7 +1664,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         scales
     }
 
-    /// Whether block `j`'s segment has collapsed onto its input point (see [`collapsed`]).
+    /// Whether block `j`'s segment has shrunk onto its input point: at most `tol` long
+    /// (`(1 - λ_{j-1}) |c_j - c_{j-1}| + λ_j |c_{j+1} - c_j|`, normalized coordinates). In
+    /// a converged solution that is the collapsed limit of [`collapsed`] or a segment within
+    /// the tolerance of it; drawn as its point, it moves the curve by at most `tol`.
     pub(crate) fn is_collapsed(&self, prob: &Problem<D>, j: usize, tol: f64) -> bool {
         let st = &self.state;
         if st.ratio(prob, j as isize - 1) < 1.0 - RATIO_NEAR_ONE || st.lam[j] > RATIO_NEAR_ONE {
@@ -1672,9 +1675,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         let loc = Self::local(prob, st, j);
         let (a, b) = (sub(loc.c0, loc.cm), sub(loc.c1, loc.c0));
-        let (aa, bb) = (dot(a, a), dot(b, b));
-        let (own, l0) = (1.0 - loc.lm, loc.l0);
-        collapsed(own, l0, aa.sqrt(), bb.sqrt(), aa, bb, dot(a, b), tol)
+        (1.0 - loc.lm) * dot(a, a).sqrt() + loc.l0 * dot(b, b).sqrt() <= tol
     }
 
     /// Merit `½|R|²` of the trial state, with row scales computed at the trial state (which

@@ -182,3 +182,19 @@ pub fn run_kappa(args: &[&str], stdin: &str) -> std::process::Output {
     let _ = child.stdin.take().unwrap().write_all(stdin.as_bytes());
     child.wait_with_output().unwrap()
 }
+
+/// The joints of a curve as `(j, k)`: segment `j` ends where segment `k` starts, stepping
+/// over segments collapsed onto their input point (an inflection through the point: the
+/// segments on either side meet there, tangent, with equal |κ|).
+pub fn joints_across_collapsed(
+    segs: &[kappa::Segment<Point>],
+    closed: bool,
+) -> Vec<(usize, usize)> {
+    let n = segs.len();
+    let live: Vec<usize> = (0..n).filter(|&j| !segs[j].is_collapsed()).collect();
+    let mut out: Vec<(usize, usize)> = live.windows(2).map(|w| (w[0], w[1])).collect();
+    if closed && live.len() >= 2 {
+        out.push((live[live.len() - 1], live[0]));
+    }
+    out
+}

@@ -10,7 +10,7 @@ use kappa::{BatchCurve, BatchSolver, Scheme, Shape, SolveOptions, Solver, Spline
 use kurbo::{Point, Vec2};
 use serde::Serialize;
 
-use crate::builtin::{self, PAPER_DRAWINGS};
+use crate::builtin::{self, DESIGNER_DRAWING};
 use crate::curve::SchemeName;
 use crate::failure::{self, Failure, Result};
 
@@ -35,9 +35,20 @@ const WARM_CASE: &str = "warm_move_one_point_50";
 const COLD_CASE: &str = "cold_50";
 const LARGE_CASE: &str = "ek_cubic_closed_100000";
 /// Every case, for `--case`.
-const CASES: [&str; 12] = [
-    "bear", "bird", "deer", "dinosaur", "elephant", "plane", "pumpkin", "rabbit", "rose",
-    WARM_CASE, COLD_CASE, LARGE_CASE,
+const CASES: [&str; 13] = [
+    "bear",
+    "bird",
+    "deer",
+    "dinosaur",
+    "elephant",
+    "plane",
+    "pumpkin",
+    "rabbit",
+    "rose",
+    DESIGNER_DRAWING,
+    WARM_CASE,
+    COLD_CASE,
+    LARGE_CASE,
 ];
 
 /// Time the solver on the built-in benchmark set.
@@ -48,7 +59,8 @@ const CASES: [&str; 12] = [
         {\"case\": \"bear\", \"scheme\": \"kappa\", \"shape\": 0.85 (ek-cubic only), \
         \"curves\": 28, \"points\": 96, \"threads\": 1, \"repeat\": 31, \"median_us\": 12.3, \"iterations\": 150, \"converged\": true}\n\n\
         Cases: each drawing of the εκ paper (bear, bird, deer, dinosaur, elephant, plane, \
-        pumpkin, rabbit, rose) solved cold, curve by curve on one thread, as a κ-curve and \
+        pumpkin, rabbit, rose) and the designer drawing (a wave, a symmetric S, a curl on \
+        whole pixels, straight runs) solved cold, curve by curve on one thread, as a κ-curve and \
         as an εκ-curve with a = 0.85 (median_us: all curves together; iterations: their \
         sum), then the same as one batch spread over the threads of the pool (\"threads\"; \
         RAYON_NUM_THREADS sets the pool's size); \
@@ -144,7 +156,7 @@ pub fn run(args: &BenchArgs) -> Result<ExitCode> {
     });
     let mut batcher = BatchSolver::with_options(solver.options());
     let mut rows = Vec::new();
-    for name in PAPER_DRAWINGS.into_iter().filter(|n| wanted(n)) {
+    for name in builtin::bench_drawings().filter(|n| wanted(n)) {
         let design = builtin::load(name)?;
         let curves: Vec<(Vec<Point>, bool)> = design
             .curves
@@ -324,6 +336,7 @@ mod tests {
 
     #[test]
     fn bench_cases_start_with_the_paper_drawings() {
+        use crate::builtin::PAPER_DRAWINGS;
         assert_eq!(CASES[..PAPER_DRAWINGS.len()], PAPER_DRAWINGS);
     }
 

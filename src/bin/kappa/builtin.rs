@@ -9,6 +9,16 @@ pub const PAPER_DRAWINGS: [&str; 9] = [
     "bear", "bird", "deer", "dinosaur", "elephant", "plane", "pumpkin", "rabbit", "rose",
 ];
 
+/// The first shapes a designer clicks (a wave and a symmetric S with inflections through
+/// points, a curl on whole pixels, straight runs): solved, drawn and timed beside the
+/// paper's drawings.
+pub const DESIGNER_DRAWING: &str = "designer";
+
+/// The drawings `kappa bench` times: the paper's, then the designer's.
+pub fn bench_drawings() -> impl Iterator<Item = &'static str> {
+    PAPER_DRAWINGS.into_iter().chain([DESIGNER_DRAWING])
+}
+
 /// The built-in drawing `name`, parsed.
 pub fn load(name: &str) -> Result<Design> {
     let text = builtin_design(name).ok_or_else(|| {

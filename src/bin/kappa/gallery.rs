@@ -13,11 +13,11 @@ use kappa::space::{views_figure, View};
 use kappa::{BSpline, BSpline3, Point3, Scheme, SpaceCurve, SpaceOptions, Vec3};
 use kurbo::Point;
 
-use crate::builtin::{self, PAPER_DRAWINGS};
+use crate::builtin::{self, DESIGNER_DRAWING, PAPER_DRAWINGS};
 use crate::failure::{self, Failure, Result};
 
 /// The drawings shown with all four variants.
-const FIGURE_DRAWINGS: [&str; 3] = ["bear", "elephant", "bird"];
+const FIGURE_DRAWINGS: [&str; 4] = ["bear", "elephant", "bird", DESIGNER_DRAWING];
 /// The drawings shown in the layout of the paper's Fig. 11 (κ, εκ-cubic, εκ-trig).
 const TRIG_DRAWINGS: [&str; 2] = ["eps-ClosedEkcurveKTM1", "rose"];
 /// Side of each panel of the Fig. 11 layout, in pixels.
@@ -44,7 +44,9 @@ const GLYPH_FONT: &[u8] = include_bytes!("../../../tests/fonts/DejaVuSans.ttf");
 #[derive(Debug, Args)]
 #[command(
     long_about = "Render the README gallery into DIR (created if needed):\n  \
-        <name>.png          bear, elephant and bird as a κ-curve and as εκ-curves with \
+        <name>.png          bear, elephant, bird and designer (a wave and a symmetric S \
+        with inflections through points, a curl on whole pixels, straight runs) as a \
+        κ-curve and as εκ-curves with \
         a = 0.75, 0.85, 0.95 side by side\n  \
         <name>-<variant>.svg  one SVG per panel (variants kappa, ek-0.75, ek-0.85, ek-0.95)\n  \
         <name>-trig.png     eps-ClosedEkcurveKTM1 and rose as in the paper's Fig. 11: κ, \
