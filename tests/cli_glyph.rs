@@ -86,6 +86,7 @@ fn check_against_library(v: &Value, ch: char, scheme: Scheme, shape: DraftShape)
     assert!(h <= tol, "Hausdorff {h} above the tolerance {tol}");
     assert_eq!(h, d.hausdorff.unwrap());
     assert_eq!(v["within_tolerance"], Value::Bool(true));
+    assert_eq!(n(&v["fallback"]), d.fallback_count());
     assert_eq!(n(&v["anchor_count"]), d.anchor_count());
     assert_eq!(n(&v["on_curve"]["explicit"]), d.original_on_curve());
     // With the implied points: one on-curve point per segment of a closed contour.
@@ -157,6 +158,7 @@ fn glyph_cli_kappa_all_formats() {
             "anchor_count",
             "char",
             "contours",
+            "fallback",
             "glyph_id",
             "hausdorff",
             "on_curve",

@@ -4,8 +4,8 @@
 use core::cell::Cell;
 
 use kurbo::{
-    BezPath, ParamCurve, ParamCurveDeriv, ParamCurveExtrema, ParamCurveNearest, PathSeg, Point,
-    Rect, Vec2,
+    BezPath, ParamCurve, ParamCurveDeriv, ParamCurveExtrema, ParamCurveNearest, PathEl, PathSeg,
+    Point, Rect, Vec2,
 };
 
 use crate::analysis::{continuity, CurvatureAnalysis};
@@ -179,6 +179,10 @@ pub struct Piece {
     /// refinement stopped at [`DraftOptions::max_refinements`], or when no anchor set it
     /// tried could be solved, before reaching it. Always true for user points.
     pub within_tolerance: bool,
+    /// No curve through the piece's anchors could be solved, even with the piece cut in
+    /// parts ([`draft`], step 7): `path` is the original's segments unchanged, `anchors`
+    /// are its ends, and `spline` only the straight chord between them.
+    pub fallback: bool,
 }
 
 /// A drafted contour.
@@ -243,6 +247,11 @@ impl DraftedGlyph {
     pub fn within_tolerance(&self) -> bool {
         self.pieces().all(|p| p.within_tolerance)
     }
+
+    /// How many pieces kept the original's segments ([`Piece::fallback`]).
+    pub fn fallback_count(&self) -> usize {
+        self.pieces().filter(|p| p.fallback).count()
+    }
 }
 
 /// Drafts a glyph outline: anchors where a designer would click, a κ/εκ curve through them,
@@ -297,6 +306,10 @@ impl DraftedGlyph {
 ///    [`Solver::resolve_shapes`]. Points whose κ-curve peak already exceeds the original
 ///    keep the lowest `a`; `a` stays in `[2/3, 0.98]` (εκ-cubic) or `[0.62, 0.98]`
 ///    (εκ-trig, where lower `a` can turn the peak into a minimum).
+/// 7. **A piece that will not solve** does not abort the glyph: it is cut in two at its
+///    middle joint (a closed piece into two open halves) and each part drafted, to
+///    [`SPLIT_DEPTH`] levels; a part that still fails keeps the original's segments,
+///    flagged ([`Piece::fallback`], [`DraftedGlyph::fallback_count`]).
 ///
 /// The reported **Hausdorff distance** is taken piece by piece, both ways, on
 /// [`DraftOptions::samples`] samples per segment with exact nearest points: the original
@@ -305,13 +318,19 @@ impl DraftedGlyph {
 ///
 /// # Errors
 ///
-/// [`Error::InvalidOption`] or [`Error::ShapeOutOfRange`] for unusable options,
-/// [`Error::NonFinitePoint`] for an outline with a NaN or infinite coordinate, and the
-/// solver's errors if a piece cannot be solved.
+/// [`Error::InvalidOption`] or [`Error::ShapeOutOfRange`] for unusable options, and
+/// [`Error::NonFinitePoint`] for an outline with a NaN or infinite coordinate. A piece the
+/// solver cannot solve is not an error (step 7).
 pub fn draft(outline: &BezPath, options: &DraftOptions) -> Result<DraftedGlyph, Error> {
     options.validate()?;
     for (index, el) in outline.elements().iter().enumerate() {
-        if el.end_point().is_some_and(|p| !p.is_finite()) {
+        let finite = match *el {
+            PathEl::MoveTo(p) | PathEl::LineTo(p) => p.is_finite(),
+            PathEl::QuadTo(a, p) => a.is_finite() && p.is_finite(),
+            PathEl::CurveTo(a, b, p) => a.is_finite() && b.is_finite() && p.is_finite(),
+            PathEl::ClosePath => true,
+        };
+        if !finite {
             return Err(Error::NonFinitePoint { index });
         }
     }
@@ -334,9 +353,10 @@ pub fn draft(outline: &BezPath, options: &DraftOptions) -> Result<DraftedGlyph, 
         let mut pieces = Vec::new();
         for (range, piece_closed) in split_pieces(&segs, closed, options.corner_angle) {
             let piece_segs: Vec<PathSeg> = range.iter().map(|&i| segs[i]).collect();
-            let piece = drafter.piece(&piece_segs, piece_closed)?;
-            hausdorff = hausdorff.max(piece.hausdorff.unwrap_or(0.0));
-            pieces.push(piece);
+            for piece in drafter.piece_or_parts(&piece_segs, piece_closed, 0) {
+                hausdorff = hausdorff.max(piece.hausdorff.unwrap_or(0.0));
+                pieces.push(piece);
+            }
         }
         let path = join_pieces(&pieces, closed);
         contours.push(DraftedContour {
@@ -385,6 +405,7 @@ pub fn draft_points(
             path: path.clone(),
             hausdorff: None,
             within_tolerance: true,
+            fallback: false,
         };
         out.push(DraftedContour {
             pieces: vec![piece],
@@ -788,7 +809,47 @@ fn finish(anchors: &[Cand], solved: Solved, closed: bool, hausdorff: f64, tolera
         path: solved.path,
         hausdorff: Some(hausdorff),
         within_tolerance: hausdorff <= tolerance,
+        fallback: false,
     }
+}
+
+/// How many times a piece that will not solve is cut in two ([`draft`], step 7).
+pub const SPLIT_DEPTH: usize = 3;
+
+/// A piece that keeps the original's segments ([`Piece::fallback`]); `None` for a piece
+/// of no length. The chord of a closed piece runs to the middle of its first segment.
+fn fallback_piece(segs: &[PathSeg], closed: bool) -> Option<Piece> {
+    let (start, end) = (segs.first()?.start(), segs.last()?.end());
+    let chord = Spline::kappa(&[start, end], false)
+        .or_else(|_| Spline::kappa(&[start, segs[0].eval(0.5)], false))
+        .ok()?;
+    let mut path = BezPath::new();
+    path.move_to(start);
+    for seg in segs {
+        match *seg {
+            PathSeg::Line(l) => path.line_to(l.p1),
+            PathSeg::Quad(q) => path.quad_to(q.p1, q.p2),
+            PathSeg::Cubic(c) => path.curve_to(c.p1, c.p2, c.p3),
+        }
+    }
+    if closed {
+        path.close_path();
+    }
+    let anchor = |point| Anchor {
+        point,
+        kind: AnchorKind::Corner,
+        a: 2.0 / 3.0,
+        target_curvature: 0.0,
+    };
+    Some(Piece {
+        anchors: vec![anchor(start), anchor(end)],
+        closed,
+        spline: chord,
+        path,
+        hausdorff: Some(0.0),
+        within_tolerance: true,
+        fallback: true,
+    })
 }
 
 struct Drafter<'o> {
@@ -806,6 +867,23 @@ struct Cand {
 
 impl Drafter<'_> {
     /// Drafts one piece ([`draft`], steps 2 and 3).
+    /// [`Drafter::piece`], or where it fails the piece cut in two and each part drafted
+    /// the same way, `depth` cuts deep so far; a part that still fails keeps the original
+    /// ([`draft`], step 7).
+    fn piece_or_parts(&mut self, segs: &[PathSeg], closed: bool, depth: usize) -> Vec<Piece> {
+        if let Ok(piece) = self.piece(segs, closed) {
+            return vec![piece];
+        }
+        if depth < SPLIT_DEPTH && segs.len() >= 2 {
+            let h = segs.len() / 2;
+            let mut out = self.piece_or_parts(&segs[..h], false, depth + 1);
+            out.extend(self.piece_or_parts(&segs[h..], false, depth + 1));
+            return out;
+        }
+        // Only a piece of no length has no fallback: it has nothing to draw either.
+        fallback_piece(segs, closed).into_iter().collect()
+    }
+
     fn piece(&mut self, segs: &[PathSeg], closed: bool) -> Result<Piece, Error> {
         let opts = self.options;
         let k = opts.samples.clamp(2, 256);
@@ -1487,5 +1565,53 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The pieces [`Drafter::piece_or_parts`] makes of `segs` (closed) with a solver capped
+    /// at `max_iterations`, after checking that they join end to end around the contour and
+    /// that the fallback ones are the original's segments.
+    fn parts(segs: &[PathSeg], max_iterations: usize) -> Vec<Piece> {
+        let options = DraftOptions::default();
+        let mut drafter = Drafter {
+            options: &options,
+            size: 2000.0,
+            solver: Solver::with_options(crate::SolveOptions {
+                max_iterations,
+                ..crate::SolveOptions::default()
+            }),
+        };
+        let pieces = drafter.piece_or_parts(segs, true, 0);
+        let mut at = segs[0].start();
+        for p in &pieces {
+            let ps: Vec<PathSeg> = p.path.segments().collect();
+            assert!(
+                (ps[0].start() - at).hypot() < 1e-9,
+                "{at:?} {:?}",
+                ps[0].start()
+            );
+            at = ps.last().unwrap().end();
+            if p.fallback {
+                assert!(ps.iter().all(|s| segs.contains(s)));
+                assert_eq!(p.hausdorff, Some(0.0));
+            }
+        }
+        assert!((at - segs[0].start()).hypot() < 1e-9);
+        pieces
+    }
+
+    #[test]
+    fn a_piece_that_will_not_solve_is_split_then_kept_as_the_original() {
+        let outline = kurbo::Affine::skew(0.3, 0.1) * ellipse();
+        let segs: Vec<PathSeg> = outline.segments().collect();
+        // One iteration does not solve the whole contour: its halves (and their halves)
+        // are drafted instead of the glyph being aborted.
+        let split = parts(&segs, 1);
+        assert!(split.len() > 1 && split.iter().all(|p| !p.fallback && !p.closed));
+        // No iteration at all: the parts that need one keep the original, flagged (parts
+        // whose anchors are just their ends are straight chords, drafted without one).
+        let kept = parts(&segs, 0);
+        assert!(kept.len() >= segs.len() / 2);
+        let fallback = kept.iter().filter(|p| p.fallback).count();
+        assert!(fallback >= 1, "{} parts, {fallback} kept", kept.len());
     }
 }

@@ -2,7 +2,7 @@
 //! write it as a picture (SVG, PNG), a UFO glyph (`.glif`) or a compiled TrueType font.
 //!
 //! The JSON output is a stable contract: `{"char", "glyph_id", "units_per_em", "scheme",
-//! "shape", "tolerance", "hausdorff", "within_tolerance", "anchor_count", "on_curve":
+//! "shape", "tolerance", "hausdorff", "within_tolerance", "fallback", "anchor_count", "on_curve":
 //! {"explicit", "all"}, "segments": {"line", "quad", "cubic"}, "contours": [{"closed",
 //! "anchors": [{"point", "kind", "a"}], "pieces", "hausdorff", "segments"}], "out":
 //! [{"file", "format", "segments", "exact", "max_error"}]}`.
@@ -49,7 +49,7 @@ const QUAD_TOLERANCE: f64 = 0.5;
         Output (stdout), one JSON object on one line:\n  \
         {\"char\": \"S\", \"glyph_id\": n, \"units_per_em\": u, \"scheme\": ..., \
         \"shape\": \"neutral\" | \"auto\" | a, \"tolerance\": t, \"hausdorff\": h, \
-        \"within_tolerance\": true, \
+        \"within_tolerance\": true, \"fallback\": 0, \
         \"anchor_count\": n, \"on_curve\": {\"explicit\": n, \"all\": n}, \
         \"segments\": {\"line\": n, \"quad\": n, \"cubic\": n}, \"contours\": [{\"closed\": true, \
         \"anchors\": [{\"point\": [x, y], \"kind\": \"corner\" | \"extremum\" | \"peak\" | \
@@ -62,6 +62,8 @@ const QUAD_TOLERANCE: f64 = 0.5;
         off-curve neighbours counts as implied, stored or not); 'hausdorff' is in font units and \
         'within_tolerance' says whether it is at most 'tolerance' (the refinement may stop \
         short: at 32 added anchors per piece, or when no anchor it tries can be solved); \
+        'fallback' counts the pieces that no curve could be solved for, even cut in parts, \
+        and that keep the original's segments (the glyph is drafted all the same); \
         each anchor's 'a' is its εκ shape parameter (2/3 for κ-curves and piece ends). \
         'out' lists each file written; for .ttf and .glif, 'segments' counts the exported \
         outline, 'exact' says whether it is the draft without approximation and 'max_error' \
@@ -218,6 +220,7 @@ struct GlyphOutput {
     tolerance: f64,
     hausdorff: f64,
     within_tolerance: bool,
+    fallback: usize,
     anchor_count: usize,
     on_curve: OnCurve,
     segments: Segments,
@@ -427,6 +430,7 @@ fn output(
         tolerance: options.tolerance,
         hausdorff: drafted.hausdorff.unwrap_or(0.0),
         within_tolerance: drafted.within_tolerance(),
+        fallback: drafted.fallback_count(),
         anchor_count: drafted.anchor_count(),
         on_curve: OnCurve {
             explicit: drafted.original_on_curve(),
