@@ -482,8 +482,58 @@ impl Spline<Point> {
                 max_distance: 0.0,
             });
         }
-        let trig: Vec<TrigBez> = self.segments.iter().map(|s| s.to_trig()).collect();
-        crate::fit::fit(&trig, self.closed, options)
+        // Fitted in a frame where the curve is about one unit wide around the origin, and
+        // mapped back: the fitters' own thresholds are absolute, and at coordinates of 1e6
+        // and more (or far from the origin) they measured errors of a tenth of the curve, or
+        // tens of thousands of cubics.
+        let (center, size) = self.frame();
+        let to_local = kurbo::Affine::translate(-center.to_vec2()).then_scale(1.0 / size);
+        let trig: Vec<TrigBez> = self
+            .segments
+            .iter()
+            .map(|s| {
+                let [q0, q1, q2] = s.q.map(|q| to_local * q);
+                TrigBez::constrained(q0, q1, q2, s.a)
+            })
+            .collect();
+        let local = FitOptions {
+            tolerance: match options.tolerance {
+                crate::fit::FitTolerance::Absolute(v) => {
+                    crate::fit::FitTolerance::Absolute(v / size)
+                }
+                relative => relative,
+            },
+            ..*options
+        };
+        let mut fitted = crate::fit::fit(&trig, self.closed, &local)?;
+        // (Not `to_local.inverse()`: its determinant underflows for sizes beyond 1e154.)
+        fitted
+            .path
+            .apply_affine(kurbo::Affine::scale(size).then_translate(center.to_vec2()));
+        fitted.tolerance *= size;
+        fitted.max_distance *= size;
+        Ok(fitted)
+    }
+
+    /// The centre and the larger side of the bounding box of the segments' defining points
+    /// (a side of 0 counts as 1): the frame [`Spline::fit`] works in.
+    fn frame(&self) -> (Point, f64) {
+        let mut pts = self.segments.iter().flat_map(|s| s.q);
+        let Some(first) = pts.next() else {
+            return (Point::ZERO, 1.0);
+        };
+        let r = pts.fold(kurbo::Rect::from_points(first, first), |r, p| r.union_pt(p));
+        // Halves first: the sides of a box near ±f64::MAX overflow.
+        let center = Point::new(0.5 * r.x0 + 0.5 * r.x1, 0.5 * r.y0 + 0.5 * r.y1);
+        let size = (0.5 * r.x1 - 0.5 * r.x0).max(0.5 * r.y1 - 0.5 * r.y0) * 2.0;
+        (
+            center,
+            if size > 0.0 && size.is_finite() {
+                size
+            } else {
+                1.0
+            },
+        )
     }
 
     /// The curve as a kurbo path: exact `QuadBez` (κ) or `CubicBez` (εκ-cubic) segments;

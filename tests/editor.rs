@@ -731,3 +731,19 @@ fn non_finite_edits_are_rejected_and_documents_round_trip() {
         assert_eq!(&back, e.doc());
     }
 }
+
+#[test]
+fn huge_drawings_keep_every_piece() {
+    // εκ-trig pieces are fitted for drawing: at 1e157 and beyond the fit used to fail and
+    // the piece went missing from the path.
+    for scale in [1.0, 1e9, 1e157, 1e250] {
+        let mut e = Editor::new(Scheme::EkTrig);
+        for p in wave(8) {
+            e.add_point(Point::new(p.x * scale, p.y * scale));
+        }
+        assert!(e.errors().is_empty(), "scale {scale:e}: {:?}", e.errors());
+        let path = e.to_bezpath();
+        assert!(path.segments().count() >= 6, "scale {scale:e}: {path:?}");
+        assert!(path.segments().all(|s| s.end().is_finite()));
+    }
+}

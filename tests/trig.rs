@@ -499,3 +499,70 @@ fn extremum_thresholds_of_symmetric_segments() {
         println!("{deg}°: local max from a = {reported:.4}, segment maximum from a = {sampled_global:.4}");
     }
 }
+
+#[test]
+fn fitting_holds_its_tolerance_at_every_scale_and_offset() {
+    // The same curve at sizes from 1e-6 to 1e200 and far from the origin: the fit is the
+    // same number of cubics within the same relative distance (measured here in the user's
+    // coordinates, against the exact curve), for kurbo's fitter and for Hermite's.
+    let base = [
+        (0.0, 0.0),
+        (100.0, 10.0),
+        (120.0, 90.0),
+        (20.0, 110.0),
+        (-30.0, 50.0),
+    ];
+    for method in [kappa::fit::FitMethod::Kurbo, kappa::fit::FitMethod::Hermite] {
+        let options = kappa::fit::FitOptions {
+            method,
+            ..kappa::fit::FitOptions::default()
+        };
+        let mut counts = Vec::new();
+        for (scale, offset) in [
+            (1.0, 0.0),
+            (1e-6, 0.0),
+            (1e6, 0.0),
+            (1e9, 0.0),
+            (1.0, 1e9),
+            (1.0, 1e12),
+            (1e100, 0.0),
+            (1e200, -1e203),
+        ] {
+            let pts: Vec<Point> = base
+                .iter()
+                .map(|&(x, y)| Point::new(x * scale + offset, y * scale + offset))
+                .collect();
+            let what = format!("{method:?} scale {scale:e} offset {offset:e}");
+            let s = Spline::ek_trig(&pts, true, 0.7).unwrap_or_else(|e| panic!("{what}: {e}"));
+            let f = s.fit(&options).unwrap();
+            let size = 140.0 * scale;
+            assert!(
+                f.max_distance <= 1e-4 * size,
+                "{what}: {}",
+                f.max_distance / size
+            );
+            // Each segment against its own cubics, sampled; distances in units of the size
+            // (kurbo's nearest-point search has absolute thresholds of its own).
+            let unit = kurbo::Affine::translate(-pts[0].to_vec2()).then_scale(1.0 / size);
+            let cubics: Vec<kurbo::PathSeg> = f.path.segments().map(|c| unit * c).collect();
+            let mut at = 0;
+            for (seg, &n) in s.segments().iter().zip(&f.cubics) {
+                let mine = &cubics[at..at + n];
+                at += n;
+                for k in 0..=40 {
+                    let p = unit * seg.eval(k as f64 / 40.0);
+                    let d = mine
+                        .iter()
+                        .map(|c| c.nearest(p, 1e-12).distance_sq.sqrt())
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(d <= 1.5e-4, "{what}: a sample is {d} off");
+                }
+            }
+            counts.push(f.cubic_count());
+        }
+        assert!(
+            counts.iter().all(|&c| c == counts[0]),
+            "{method:?}: {counts:?}"
+        );
+    }
+}
