@@ -1,0 +1,151 @@
+//! Clicks on whole pixels: random walks on an integer grid and whole-pixel samples of smooth
+//! curves. Every curve that converges has the papers' properties; the convergence rates are
+//! measured per scheme, printed, and held above their measured floors (README, "Known
+//! limits", classifies the failures).
+
+mod common;
+
+use kappa::{Error, Scheme, Shape, Solver};
+use kurbo::Point;
+
+const SCHEMES: [(Scheme, f64); 3] = [
+    (Scheme::Kappa, 2.0 / 3.0),
+    (Scheme::EkCubic, 0.8),
+    (Scheme::EkTrig, 0.7),
+];
+
+/// Converged / attempted for each scheme over `cases`; each converged curve passes through
+/// its points within 1e-9 of the drawing size.
+fn rates(cases: &[(Vec<Point>, bool)]) -> Vec<(usize, usize)> {
+    SCHEMES
+        .iter()
+        .map(|&(scheme, a)| {
+            let (mut ok, mut total) = (0, 0);
+            let mut solver = Solver::new();
+            for (points, closed) in cases {
+                match solver.solve(points, *closed, scheme, &Shape::Global(a)) {
+                    Ok(s) => {
+                        let off = usize::from(!closed);
+                        let r = points
+                            .iter()
+                            .fold(kurbo::Rect::from_points(points[0], points[0]), |r, &p| {
+                                r.union_pt(p)
+                            });
+                        let size = r.width().max(r.height());
+                        for (j, seg) in s.segments().iter().enumerate() {
+                            let err = (seg.eval(seg.t_max) - points[j + off]).hypot();
+                            assert!(err <= 1e-9 * size, "{scheme:?}: {points:?}");
+                        }
+                        ok += 1;
+                        total += 1;
+                    }
+                    Err(Error::NotConverged { residual, .. }) => {
+                        assert!(residual > 1e-12);
+                        total += 1;
+                    }
+                    // Input no curve goes through (a point repeated, a line doubling back).
+                    Err(Error::RepeatedPoint { .. }) | Err(Error::Collinear) => {}
+                    Err(e) => panic!("{scheme:?}: unexpected {e}"),
+                }
+            }
+            (ok, total)
+        })
+        .collect()
+}
+
+fn report(what: &str, rates: &[(usize, usize)], floors: [f64; 3]) {
+    let mut table = String::new();
+    for ((&(scheme, a), &(ok, total)), floor) in SCHEMES.iter().zip(rates).zip(floors) {
+        let rate = ok as f64 / total as f64;
+        table += &format!("{what}, {scheme:?} a = {a:.3}: {ok}/{total} converge\n");
+        assert!(
+            rate >= floor,
+            "{what}, {scheme:?}: {ok}/{total} converge, below {floor}"
+        );
+    }
+    println!("{table}");
+}
+
+#[test]
+fn random_walks_on_an_integer_grid() {
+    // 4–40 points, steps of up to 5 units each way (never zero), open and closed.
+    let mut rng = common::Lcg(28);
+    let mut open = Vec::new();
+    let mut closed = Vec::new();
+    for k in 0..600 {
+        let n = 4 + (rng.next() * 37.0) as usize;
+        let mut p = vec![Point::ZERO];
+        while p.len() < n {
+            let mut step = || ((rng.next() * 11.0) as i32 - 5) as f64;
+            let (dx, dy) = (step(), step());
+            if (dx, dy) != (0.0, 0.0) {
+                let last = p[p.len() - 1];
+                p.push(Point::new(last.x + dx, last.y + dy));
+            }
+        }
+        if k % 2 == 0 {
+            open.push((p, false));
+        } else if p[0] != p[n - 1] {
+            closed.push((p, true));
+        }
+    }
+    // Measured: κ 99.0–99.7 %, εκ-cubic 100 %, εκ-trig 99.3 % (the target is 99.9 %).
+    report("grid walks, open", &rates(&open), [0.98, 0.995, 0.98]);
+    report("grid walks, closed", &rates(&closed), [0.98, 0.995, 0.98]);
+}
+
+#[test]
+fn whole_pixel_samples_of_smooth_curves() {
+    // Circles, lemniscates, spirals and sines of 6–48 points at three sizes, each point
+    // rounded to a whole pixel.
+    let mut cases = Vec::new();
+    let tau = std::f64::consts::TAU;
+    let px = |x: f64, y: f64| Point::new(x.round(), y.round());
+    for n in [6, 8, 12, 16, 24, 32, 48] {
+        for r in [20.0, 50.0, 120.0] {
+            let at = |i: usize| i as f64 / n as f64 * tau;
+            cases.push((
+                (0..n)
+                    .map(|i| px(300.0 + r * at(i).cos(), 300.0 + r * at(i).sin()))
+                    .collect(),
+                true,
+            ));
+            cases.push((
+                (0..n)
+                    .map(|i| {
+                        let t = at(i);
+                        let d = 1.0 + t.sin().powi(2);
+                        px(
+                            300.0 + 2.0 * r * t.cos() / d,
+                            300.0 + 2.0 * r * t.sin() * t.cos() / d,
+                        )
+                    })
+                    .collect(),
+                true,
+            ));
+            cases.push((
+                (0..n)
+                    .map(|i| {
+                        let t = 2.0 * at(i);
+                        let rr = r * (0.2 + t / 6.0);
+                        px(300.0 + rr * t.cos(), 300.0 + rr * t.sin())
+                    })
+                    .collect(),
+                false,
+            ));
+            cases.push((
+                (0..n)
+                    .map(|i| {
+                        let x = i as f64 * 400.0 / n as f64;
+                        px(100.0 + x, 300.0 + r * (x / 60.0).sin())
+                    })
+                    .collect(),
+                false,
+            ));
+        }
+    }
+    // Measured: κ 72 %, εκ-cubic and εκ-trig 95 %: dense samples (16 and more points a
+    // turn) of curves whose curvature varies fail for κ, and the lemniscate's crossing
+    // fails at 32 and 48 points for all (README, "Known limits").
+    report("whole-pixel samples", &rates(&cases), [0.65, 0.9, 0.9]);
+}
