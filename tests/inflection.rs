@@ -2,6 +2,8 @@
 //! first shapes a designer clicks (a symmetric S, a wave, the sides of a rounded rectangle, a
 //! curl on whole pixels) converge in every scheme.
 
+mod common;
+
 use kappa::{Extremum, Scheme, Shape, Solver, Spline};
 use kurbo::{ParamCurve, ParamCurveArclen, ParamCurveDeriv, PathSeg, Point, Vec2};
 
@@ -24,12 +26,7 @@ fn solve(points: &[Point], closed: bool, scheme: Scheme, a: f64) -> Spline {
 }
 
 fn size(points: &[Point]) -> f64 {
-    let r = points
-        .iter()
-        .fold(kurbo::Rect::from_points(points[0], points[0]), |r, &p| {
-            r.union_pt(p)
-        });
-    r.width().max(r.height())
+    common::drawing_size(points)
 }
 
 /// The unit tangent of a segment at `t` (its first non-zero derivative).

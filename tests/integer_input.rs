@@ -26,12 +26,7 @@ fn rates(cases: &[(Vec<Point>, bool)]) -> Vec<(usize, usize)> {
                 match solver.solve(points, *closed, scheme, &Shape::Global(a)) {
                     Ok(s) => {
                         let off = usize::from(!closed);
-                        let r = points
-                            .iter()
-                            .fold(kurbo::Rect::from_points(points[0], points[0]), |r, &p| {
-                                r.union_pt(p)
-                            });
-                        let size = r.width().max(r.height());
+                        let size = common::drawing_size(points);
                         for (j, seg) in s.segments().iter().enumerate() {
                             let err = (seg.eval(seg.t_max) - points[j + off]).hypot();
                             assert!(err <= 1e-9 * size, "{scheme:?}: {points:?}");

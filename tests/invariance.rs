@@ -46,12 +46,7 @@ fn solve(points: &[Point], closed: bool, scheme: Scheme, a: f64) -> Option<Splin
 }
 
 fn size(points: &[Point]) -> f64 {
-    let r = points
-        .iter()
-        .fold(kurbo::Rect::from_points(points[0], points[0]), |r, &p| {
-            r.union_pt(p)
-        });
-    r.width().max(r.height())
+    common::drawing_size(points)
 }
 
 /// The largest difference between `b` and the image of `a` under `map`, relative to the size

@@ -198,3 +198,13 @@ pub fn joints_across_collapsed(
     }
     out
 }
+
+/// The size of a drawing: the larger side of its points' bounding box.
+pub fn drawing_size(points: &[Point]) -> f64 {
+    let r = points
+        .iter()
+        .fold(kurbo::Rect::from_points(points[0], points[0]), |r, &p| {
+            r.union_pt(p)
+        });
+    r.width().max(r.height())
+}
