@@ -745,5 +745,20 @@ fn huge_drawings_keep_every_piece() {
         let path = e.to_bezpath();
         assert!(path.segments().count() >= 6, "scale {scale:e}: {path:?}");
         assert!(path.segments().all(|s| s.end().is_finite()));
+        // Hit testing finds a point of the curve, at a finite distance relative to the
+        // drawing (squared differences overflow beyond 1e154)
+        let on = path.segments().nth(2).unwrap().eval(0.4);
+        let hit = e.hit_test(on).unwrap();
+        // (The drawn path is fitted within 1e-4 of the size to the exact curve hit-tested.)
+        assert!(
+            hit.distance <= 2e-4 * 140.0 * scale,
+            "scale {scale:e}: {hit:?}"
+        );
+        let off = Point::new(on.x, on.y + 10.0 * scale);
+        let hit = e.hit_test(off).unwrap();
+        assert!(
+            hit.distance.is_finite() && hit.distance <= 10.03 * scale,
+            "scale {scale:e}: {hit:?}"
+        );
     }
 }

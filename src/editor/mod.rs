@@ -810,7 +810,8 @@ impl Editor {
             };
             for (j, seg) in spline.segments().iter().enumerate() {
                 let (t, q) = nearest_on_segment(seg, p);
-                let d = (q - p).hypot();
+                // (f64::hypot: the squares of coordinates beyond 1e154 overflow.)
+                let d = (q.x - p.x).hypot(q.y - p.y);
                 if d.is_nan() {
                     continue;
                 }
@@ -883,7 +884,14 @@ fn append(out: &mut BezPath, path: BezPath) {
 /// The nearest point of a segment to `p`: 64 samples, then golden-section refinement.
 fn nearest_on_segment(seg: &Segment<Point>, p: Point) -> (f64, Point) {
     const SAMPLES: usize = 64;
-    let dist = |t: f64| (seg.eval(t) - p).hypot2();
+    // Distances compared in units of the segment's extent: squared differences of
+    // coordinates near 1e154 and beyond overflow.
+    let [q0, q1, q2] = seg.q;
+    let unit = [q1 - q0, q2 - q1, p - q0]
+        .iter()
+        .map(|v| v.x.abs().max(v.y.abs()))
+        .fold(f64::MIN_POSITIVE, f64::max);
+    let dist = |t: f64| ((seg.eval(t) - p) / unit).hypot2();
     let mut best = 0;
     let mut best_d = f64::INFINITY;
     for i in 0..=SAMPLES {
