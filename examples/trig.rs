@@ -24,6 +24,7 @@ fn main() -> Result<(), kappa::Error> {
                 Extremum::Max => "max",
                 Extremum::Min => "min",
                 Extremum::Inflection => "inflection",
+                Extremum::EndOnly => "end-only",
             })
             .collect();
         println!(

@@ -11,6 +11,10 @@ use crate::{Error, Point3};
 /// Iterations a warm re-solve may take before the cold cascade takes over.
 const WARM_BUDGET: usize = 100;
 
+/// Peak parameters within this of 0 or 1 sit at the segment end (as the analysis counts
+/// them).
+const END_PEAK: f64 = 1e-9;
+
 /// How many drawing sizes beyond the points the arithmetic must stay finite: drawings that
 /// reach within this of `±f64::MAX` (or whose centre is beyond a quarter of it) are an
 /// [`Error::ExtentOverflow`] (found by fuzzing: a drawing 1e308 wide solved, but its curve
@@ -302,7 +306,10 @@ impl Segment<Point> {
     }
 
     /// Whether `|κ|` is maximal or minimal at `t_max` (see [`Extremum`]). κ and εκ-cubic
-    /// segments always peak there; εκ-trig segments with `a` below about 0.61 may not.
+    /// segments always peak there (or have collapsed onto an inflection); εκ-trig segments
+    /// with `a` below about 0.61 may have a minimum there, and one whose peak was pushed to
+    /// a segment end may be higher inside ([`Extremum::EndOnly`], found by sampling |κ| at
+    /// 64 parameters).
     pub fn extremum(&self) -> Extremum {
         if self.is_collapsed() {
             return Extremum::Inflection;
@@ -315,7 +322,22 @@ impl Segment<Point> {
         }
         let [q0, q1, q2] = self.q;
         let (r, s) = (q1 - q0, q2 - q1);
-        classify(&self.basis(), r.dot(r), r.dot(s), s.dot(s), self.t_max)
+        let kind = classify(&self.basis(), r.dot(r), r.dot(s), s.dot(s), self.t_max);
+        let at_end = self.t_max <= END_PEAK || self.t_max >= 1.0 - END_PEAK;
+        if kind == Extremum::Max && at_end {
+            // A local maximum at the end; is it the segment's? (|κ| sampled at 64 inner
+            // parameters, against its value at the end with the rounding of its control
+            // points allowed for.)
+            let trig = self.to_trig();
+            let k = trig.curvature(self.t_max).abs();
+            let inside = (1..64)
+                .map(|i| trig.curvature(i as f64 / 64.0).abs())
+                .fold(0.0, f64::max);
+            if inside > k * (1.0 + 1e-9) {
+                return Extremum::EndOnly;
+            }
+        }
+        kind
     }
 }
 

@@ -35,10 +35,13 @@ use crate::picture;
         Output (stdout), one JSON object on one line:\n  \
         {\"scheme\": ..., \"closed\": ..., \"iterations\": n, \"converged\": true, \
         \"segments\": [{\"degree\": 2 | 3, \"points\": [[x, y], ...], \"t_max\": t, \
-        \"extremum\": \"max\" | \"min\"}, ...], \"svg_path\": \"M...\"}\n\
+        \"extremum\": \"max\" | \"min\" | \"end-only\" | \"inflection\"}, ...], \
+        \"svg_path\": \"M...\"}\n\
         Segment 'points' are the Bézier control points (3 for degree 2, 4 for degree 3); the \
         segment passes through its input point at t_max, where |curvature| has a local \
-        'extremum'. Segments follow the curve: one per input point (closed) or per interior \
+        'extremum' (\"end-only\": a local maximum at a segment end, the segment's |curvature| \
+        being higher inside; \"inflection\": the segment has collapsed onto its point, an \
+        inflection of the curve). Segments follow the curve: one per input point (closed) or per interior \
         input point (open). ek-trig segments carry \"basis\": \"trig\" and as 'points' the five \
         control points P0..P4 of their quadratic trigonometric curve; their svg_path is fitted \
         (cubics within 1e-4 of the drawing size) and the output adds \
@@ -317,6 +320,7 @@ pub fn curve_output(spline: &Spline) -> Result<CurveOutput> {
                 Extremum::Max => "max",
                 Extremum::Min => "min",
                 Extremum::Inflection => "inflection",
+                Extremum::EndOnly => "end-only",
             },
         })
         .collect();
