@@ -417,3 +417,35 @@ test("a solve that does not converge shows its best curve, flagged, and undo bri
   assert.match(back.error, /did not converge/);
   assert.ok(back.failed && back.elements >= 30);
 });
+
+test("drag updates of a 300-point path that does not converge stay within a frame", async () => {
+  // The κ-curve of a dense sine does not converge: each update's solve is capped (the
+  // engine's DRAG_WORK), the flagged curve stays on screen, and mouse up finishes it.
+  const r = await page.evaluate(() => {
+    const k = window.kappa;
+    // Drawn as εκ-trig (each click solves quickly), then switched to κ (one failing solve).
+    k.reset("ek-trig");
+    for (let i = 0; i < 300; i++) k.engine.addPoint(20 + 2.8 * i, 300 + 100 * Math.sin(0.21 * i));
+    k.setScheme("kappa");
+    k.setComb(false);
+    const base = k.points()[150];
+    const times = [], iterations = [];
+    for (let u = 1; u <= 20; u++) {
+      const t0 = performance.now();
+      k.drag(150, base.x, base.y + 0.5 * u);
+      times.push(performance.now() - t0);
+      iterations.push(k.engine.lastIterations());
+    }
+    const shown = k.pathElements().length;
+    const failed = k.pieces()[0].failed;
+    const t0 = performance.now();
+    k.endDrag();
+    const end = performance.now() - t0;
+    times.sort((a, b) => a - b);
+    return { median: times[10], max: times[19], iterations, shown, failed, end };
+  });
+  console.log(`300-point failing drag: median ${r.median.toFixed(2)} ms, max ${r.max.toFixed(2)} ms ` +
+    `per update (iterations ${Math.max(...r.iterations)}), end_drag ${r.end.toFixed(0)} ms`);
+  assert.ok(r.failed && r.shown > 250, `${r.shown} path elements`);
+  assert.ok(Math.max(...r.iterations) <= 50, `${r.iterations}`);
+});
