@@ -5,7 +5,7 @@
 mod common;
 
 use kappa::{Extremum, Scheme, Shape, Solver, Spline};
-use kurbo::{ParamCurve, ParamCurveArclen, ParamCurveDeriv, PathSeg, Point, Vec2};
+use kurbo::{ParamCurveArclen, Point, Vec2};
 
 /// The schemes and shapes every case is solved with.
 const SCHEMES: [(Scheme, f64); 4] = [
@@ -31,17 +31,11 @@ fn size(points: &[Point]) -> f64 {
 
 /// The unit tangent of a segment at `t` (its first non-zero derivative).
 fn tangent(seg: &kappa::Segment<Point>, t: f64) -> Vec2 {
-    let d = match seg.to_path_seg() {
-        PathSeg::Quad(q) => q.deriv().eval(t).to_vec2(),
-        PathSeg::Cubic(c) => c.deriv().eval(t).to_vec2(),
-        PathSeg::Line(l) => l.p1 - l.p0,
-    };
-    let d = if seg.scheme == Scheme::EkTrig {
-        seg.to_trig().derivative(t)
+    if seg.scheme == Scheme::EkTrig {
+        seg.to_trig().derivative(t).normalize()
     } else {
-        d
-    };
-    d.normalize()
+        common::tangent(&seg.to_path_seg(), t)
+    }
 }
 
 /// Every input point lies on its segment at the peak parameter (the ends of an open curve

@@ -565,10 +565,7 @@ fn random_inputs_convergence_rate() {
             let (mut ok, mut total) = (0usize, 0usize);
             for _ in 0..2000 {
                 let n = 3 + (rng.next() * 22.0) as usize;
-                let raw: Vec<(f64, f64)> = (0..n)
-                    .map(|_| (rng.next(), 0.35 + 0.65 * rng.next()))
-                    .collect();
-                let mut pts = common::star_polygon(&raw, 100.0, 0.0);
+                let mut pts = rng.star(n);
                 if !closed {
                     pts.pop();
                 }

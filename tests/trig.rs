@@ -167,10 +167,7 @@ fn random_trig_convergence_rate() {
         let (mut ok, mut total) = (0, 0);
         for _ in 0..1000 {
             let n = 3 + (rng.next() * 17.0) as usize;
-            let raw: Vec<(f64, f64)> = (0..n)
-                .map(|_| (rng.next(), 0.35 + 0.65 * rng.next()))
-                .collect();
-            let pts = common::star_polygon(&raw, 100.0, 0.0);
+            let pts = rng.star(n);
             total += 1;
             match Spline::ek_trig(&pts, true, a) {
                 Ok(s) => {
@@ -588,10 +585,7 @@ fn peaks_pushed_to_a_segment_end_say_whether_they_are_the_segments_peak() {
     let (mut ends, mut end_only) = (0, 0);
     for _ in 0..600 {
         let n = 3 + (rng.next() * 20.0) as usize;
-        let raw: Vec<(f64, f64)> = (0..n)
-            .map(|_| (rng.next(), 0.35 + 0.65 * rng.next()))
-            .collect();
-        let pts = common::star_polygon(&raw, 100.0, 0.0);
+        let pts = rng.star(n);
         let a = 0.65 + 0.1 * rng.next();
         let Ok(s) = Solver::new().solve(&pts, true, Scheme::EkTrig, &Shape::Global(a)) else {
             continue;

@@ -823,15 +823,7 @@ fn fallback_piece(segs: &[PathSeg], closed: bool) -> Option<Piece> {
     let chord = Spline::kappa(&[start, end], false)
         .or_else(|_| Spline::kappa(&[start, segs[0].eval(0.5)], false))
         .ok()?;
-    let mut path = BezPath::new();
-    path.move_to(start);
-    for seg in segs {
-        match *seg {
-            PathSeg::Line(l) => path.line_to(l.p1),
-            PathSeg::Quad(q) => path.quad_to(q.p1, q.p2),
-            PathSeg::Cubic(c) => path.curve_to(c.p1, c.p2, c.p3),
-        }
-    }
+    let mut path = BezPath::from_path_segments(segs.iter().copied());
     if closed {
         path.close_path();
     }
@@ -866,7 +858,6 @@ struct Cand {
 }
 
 impl Drafter<'_> {
-    /// Drafts one piece ([`draft`], steps 2 and 3).
     /// [`Drafter::piece`], or where it fails the piece cut in two and each part drafted
     /// the same way, `depth` cuts deep so far; a part that still fails keeps the original
     /// ([`draft`], step 7).
@@ -884,6 +875,7 @@ impl Drafter<'_> {
         fallback_piece(segs, closed).into_iter().collect()
     }
 
+    /// Drafts one piece ([`draft`], steps 2 and 3).
     fn piece(&mut self, segs: &[PathSeg], closed: bool) -> Result<Piece, Error> {
         let opts = self.options;
         let k = opts.samples.clamp(2, 256);

@@ -146,7 +146,7 @@ fn lambda_valid(lam: f64) -> bool {
 
 /// Whether a step `dl` pushes ratio `j` further out of its range where it sits at its bound
 /// ([`LAMBDA_MIN`] from 0 or 1) as part of a segment collapsing onto its input point (see
-/// [`collapsed`]): `λ_j → 1` with `λ_{j+1} → 0` (the next segment collapses), or `λ_j → 0`
+/// [`Joint::collapsed`]): `λ_j → 1` with `λ_{j+1} → 0` (the next segment collapses), or `λ_j → 0`
 /// with `λ_{j-1} → 1` (this one does). Such a ratio is held where it is and the rest of the
 /// step is taken: cutting every step to keep it inside would stall Newton there. A ratio at
 /// its bound without the partner (a curve heading elsewhere) is not held. Indices wrap
@@ -170,8 +170,7 @@ fn pinned_at_bound<const D: usize>(st: &State<D>, j: usize, dl: f64) -> bool {
     let prev = |i: usize| if i == 0 { n - 1 } else { i - 1 };
     // The segment that collapses, and its control polygon's turn.
     let corner = |i: usize| {
-        let (u, v) = (sub(st.c[i], st.c[prev(i)]), sub(st.c[next(i)], st.c[i]));
-        nearly_straight(dot(u, u), dot(v, v), dot(u, v))
+        Joint::of(sub(st.c[i], st.c[prev(i)]), sub(st.c[next(i)], st.c[i])).turn_within(STRAIGHTISH)
     };
     if dl > 0.0 && (1.0 - 2.0 * LAMBDA_MIN..1.0).contains(&l) {
         lam[next(j)] <= PARTNER && corner(next(j))
@@ -182,16 +181,10 @@ fn pinned_at_bound<const D: usize>(st: &State<D>, j: usize, dl: f64) -> bool {
     }
 }
 
-/// Whether the turn between edges `u` and `v` (given `u·u`, `v·v`, `u·v`) has a sine below
-/// [`STRAIGHTISH`] and goes forward: the control polygon of a segment collapsing at an
-/// inflection turns by `O(1 - λ)` (see [`collapsed`]); a segment shrinking at a real
-/// corner is a curve heading to another solution.
-#[inline]
-fn nearly_straight(uu: f64, vv: f64, uv: f64) -> bool {
-    uv > 0.0 && uu * vv - uv * uv <= STRAIGHTISH * STRAIGHTISH * uu * vv
-}
-
-/// See [`nearly_straight`].
+/// The largest sine of the control polygon's turn at a segment still counted as shrinking
+/// towards its point (see [`Joint::turn_within`]): the polygon of a segment collapsing at
+/// an inflection turns by `O(1 - λ)` (see [`Joint::collapsed`]); a segment shrinking at a
+/// real corner is a curve heading to another solution.
 const STRAIGHTISH: f64 = 1e-4;
 
 /// How close to its bound the partner of a held ratio must be (see [`pinned`]).
@@ -1606,15 +1599,20 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let thin2 = |nu: f64, nv: f64, uu: f64, vv: f64, uv: f64| {
             (nu + nv) * (nu + nv) / (uu * vv - uv * uv).max(f64::MIN_POSITIVE)
         };
-        let area = thin2(na, nb, aa, bb, dot(a, b))
-            .max(thin2(nb, ne, bb, ee, dot(b, e)))
+        let (ab, be) = (dot(a, b), dot(b, e));
+        let area = thin2(na, nb, aa, bb, ab)
+            .max(thin2(nb, ne, bb, ee, be))
             .sqrt();
         let floor = ROUNDING_FLOOR / local.max(f64::MIN_POSITIVE);
         let g2_floor = floor.max((ROUNDING_FLOOR * area).min(MAX_FLOOR));
         let scales = [(tol / g2_floor).min(1.0), (tol / floor).min(1.0)];
         let (own, next) = (1.0 - loc.lm, 1.0 - loc.l0);
         if own < RATIO_NEAR_ONE || next < RATIO_NEAR_ONE {
-            Self::shrinking_scales(loc, tol, scales, [a, b, e], [floor, g2_floor])
+            let joints = [
+                Joint::new(na, nb, aa, bb, ab),
+                Joint::new(nb, ne, bb, ee, be),
+            ];
+            Self::shrinking_scales(loc, tol, scales, joints, [floor, g2_floor])
         } else {
             scales
         }
@@ -1625,7 +1623,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// A ratio near 1 is known to an absolute rounding error ~ε, so `1 - λ` to a relative
     /// one ~ε/(1 - λ). Where a segment shrinks towards its input point (`1 - λ_{j-1}` and
     /// `λ_j` both small, at a nearly straight turn of the control polygon: an inflection,
-    /// [`collapsed`]) its start leg `r = (1 - λ_{j-1}) (c_j - c_{j-1})` and the G2 terms of
+    /// [`Joint::collapsed`]) its start leg `r = (1 - λ_{j-1}) (c_j - c_{j-1})` and the G2 terms of
     /// its two joints are no more precise than that. Once it has collapsed, its peak row and
     /// both its G2 rows count as met.
     #[cold]
@@ -1633,32 +1631,29 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         loc: &Local<D>,
         tol: f64,
         scales: [f64; 2],
-        [a, b, e]: [[f64; D]; 3],
+        [at_own, at_next]: [Joint; 2],
         [floor, g2_floor]: [f64; 2],
     ) -> [f64; 2] {
         let (own, next) = (1.0 - loc.lm, 1.0 - loc.l0);
-        let (aa, bb, ee) = (dot(a, a), dot(b, b), dot(e, e));
-        let (ab, be) = (dot(a, b), dot(b, e));
-        let (na, nb, ne) = (aa.sqrt(), bb.sqrt(), ee.sqrt());
-        if collapsed(own, loc.l0, na, nb, aa, bb, ab, tol) {
+        if at_own.collapsed(own, loc.l0, tol) {
             return [0.0, 0.0];
         }
-        let shrinking = |r: f64, partner: f64, straight: bool| {
-            if r < RATIO_NEAR_ONE && partner < RATIO_NEAR_ONE && straight {
+        let shrinking = |r: f64, partner: f64, joint: Joint| {
+            if r < RATIO_NEAR_ONE && partner < RATIO_NEAR_ONE && joint.turn_within(STRAIGHTISH) {
                 (ROUNDING_FLOOR / r.max(f64::MIN_POSITIVE)).min(RATIO_FLOOR)
             } else {
                 0.0
             }
         };
-        let own_floor = shrinking(own, loc.l0, nearly_straight(aa, bb, ab));
-        let next_floor = shrinking(next, loc.l1, nearly_straight(bb, ee, be));
+        let own_floor = shrinking(own, loc.l0, at_own);
+        let next_floor = shrinking(next, loc.l1, at_next);
         if own_floor == 0.0 && next_floor == 0.0 {
             return scales;
         }
         let floor = floor.max(own_floor);
         let g2_floor = g2_floor.max(floor).max(next_floor);
         let mut scales = [(tol / g2_floor).min(1.0), (tol / floor).min(1.0)];
-        if collapsed(next, loc.l1, nb, ne, bb, ee, be, tol) {
+        if at_next.collapsed(next, loc.l1, tol) {
             scales[0] = 0.0;
         }
         scales
@@ -1666,7 +1661,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
 
     /// Whether block `j`'s segment has shrunk onto its input point: at most `tol` long
     /// (`(1 - λ_{j-1}) |c_j - c_{j-1}| + λ_j |c_{j+1} - c_j|`, normalized coordinates). In
-    /// a converged solution that is the collapsed limit of [`collapsed`] or a segment within
+    /// a converged solution that is the collapsed limit of [`Joint::collapsed`] or a segment within
     /// the tolerance of it; drawn as its point, it moves the curve by at most `tol`.
     pub(crate) fn is_collapsed(&self, prob: &Problem<D>, j: usize, tol: f64) -> bool {
         let st = &self.state;
@@ -1674,8 +1669,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             return false;
         }
         let loc = Self::local(prob, st, j);
-        let (a, b) = (sub(loc.c0, loc.cm), sub(loc.c1, loc.c0));
-        (1.0 - loc.lm) * dot(a, a).sqrt() + loc.l0 * dot(b, b).sqrt() <= tol
+        let joint = Joint::of(sub(loc.c0, loc.cm), sub(loc.c1, loc.c0));
+        joint.extent(1.0 - loc.lm, loc.l0) <= tol
     }
 
     /// Merit `½|R|²` of the trial state, with row scales computed at the trial state (which
@@ -2114,34 +2109,69 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     }
 }
 
-/// Whether a segment has collapsed onto its input point at a straight joint: the limit of
-/// an inflection through an input point.
-///
-/// When an interior point `p_j` lies on the line through its neighbours and the curve is
-/// symmetric about it (a point-symmetric S or wave), the segment through `p_j` shrinks to
-/// `p_j` as the point approaches the line: with `α = 1 - λ_{j-1}` and `β = λ_j` its legs
-/// are `r = α (c_j - c_{j-1})` and `s = β (c_{j+1} - c_j)`, and the G2 conditions at its two
-/// joints (`α² X = β T_j`, `α T_j = β² Y` up to `O(α)`, seed 000 eqs. 8–10) give
-/// `T_j ∝ α`, `β ∝ α`: the segment's extent, the turn of the control polygon at `c_j` and
-/// `c_j - p_j` all vanish linearly with the offset (measured on the wave
-/// `(100,300) … (700,300)`: offsets 1 → 1e-3 take the segment's span from 2.5 to 0.003 with
-/// its peak parameter fixed near 0.784, or 0.216 from the other side). The limit curve is
-/// the two neighbouring segments meeting at `p_j`, tangent to the line `c_{j-1} c_{j+1}`:
-/// an inflection at the input point, G1 there and G2 everywhere else. Without the
-/// symmetry the segment does not collapse: the peak moves to a segment end (`t_j = 0` or 1)
-/// and `p_j` is the joint.
-///
-/// The collapsed state satisfies the block's equations only in the limit `α = β = 0`, which
-/// the ratios cannot reach (they stay at least [`LAMBDA_MIN`] inside `(0, 1)`). So it is
-/// recognized: the segment spans `α |c_j - c_{j-1}| + β |c_{j+1} - c_j|` at most `tol`
-/// (normalized coordinates), and the polygon's turn at `c_j` has a sine of at most `tol`
-/// (G1). Its peak row and the G2 rows of its two joints then count as met.
-#[inline]
-#[allow(clippy::too_many_arguments)]
-fn collapsed(alpha: f64, beta: f64, nu: f64, nv: f64, uu: f64, vv: f64, uv: f64, tol: f64) -> bool {
-    alpha * nu + beta * nv <= tol && {
-        let cross2 = (uu * vv - uv * uv).max(0.0);
-        uv > 0.0 && cross2 <= tol * tol * uu * vv
+/// The control polygon at a middle control point `c_j`: its edges `u = c_j - c_{j-1}` and
+/// `v = c_{j+1} - c_j` by their lengths and dot products (what [`Workspace::check_scales`]
+/// has at hand), for the tests of a segment shrinking onto its input point.
+#[derive(Clone, Copy)]
+struct Joint {
+    nu: f64,
+    nv: f64,
+    uu: f64,
+    vv: f64,
+    uv: f64,
+}
+
+impl Joint {
+    #[inline]
+    fn new(nu: f64, nv: f64, uu: f64, vv: f64, uv: f64) -> Joint {
+        Joint { nu, nv, uu, vv, uv }
+    }
+
+    /// The joint of edges `u` and `v`.
+    #[inline]
+    fn of<const D: usize>(u: [f64; D], v: [f64; D]) -> Joint {
+        let (uu, vv) = (dot(u, u), dot(v, v));
+        Joint::new(uu.sqrt(), vv.sqrt(), uu, vv, dot(u, v))
+    }
+
+    /// The extent `α |u| + β |v|` of the segment with ratios `α = 1 - λ_{j-1}`, `β = λ_j`.
+    #[inline]
+    fn extent(self, alpha: f64, beta: f64) -> f64 {
+        alpha * self.nu + beta * self.nv
+    }
+
+    /// Whether the polygon goes forward at `c_j` and turns there by a sine of at most `sine`.
+    #[inline]
+    fn turn_within(self, sine: f64) -> bool {
+        let cross2 = (self.uu * self.vv - self.uv * self.uv).max(0.0);
+        self.uv > 0.0 && cross2 <= sine * sine * self.uu * self.vv
+    }
+
+    /// Whether a segment has collapsed onto its input point at a straight joint (the limit of
+    /// an inflection through an input point), `α` and `β` being its ratios `1 - λ_{j-1}`, `λ_j`.
+    ///
+    /// When an interior point `p_j` lies on the line through its neighbours and the curve is
+    /// symmetric about it (a point-symmetric S or wave), the segment through `p_j` shrinks to
+    /// `p_j` as the point approaches the line: with `α = 1 - λ_{j-1}` and `β = λ_j` its legs
+    /// are `r = α (c_j - c_{j-1})` and `s = β (c_{j+1} - c_j)`, and the G2 conditions at its two
+    /// joints (`α² X = β T_j`, `α T_j = β² Y` up to `O(α)`, seed 000 eqs. 8–10) give
+    /// `T_j ∝ α`, `β ∝ α`: the segment's extent, the turn of the control polygon at `c_j` and
+    /// `c_j - p_j` all vanish linearly with the offset (measured on the wave
+    /// `(100,300) … (700,300)`: offsets 1 → 1e-3 take the segment's span from 2.5 to 0.003 with
+    /// its peak parameter fixed near 0.784, or 0.216 from the other side). The limit curve is
+    /// the two neighbouring segments meeting at `p_j`, tangent to the line `c_{j-1} c_{j+1}`:
+    /// an inflection at the input point, G1 there and G2 everywhere else. Without the
+    /// symmetry the segment does not collapse: the peak moves to a segment end (`t_j = 0` or 1)
+    /// and `p_j` is the joint.
+    ///
+    /// The collapsed state satisfies the block's equations only in the limit `α = β = 0`, which
+    /// the ratios cannot reach (they stay at least [`LAMBDA_MIN`] inside `(0, 1)`). So it is
+    /// recognized: the segment spans `α |c_j - c_{j-1}| + β |c_{j+1} - c_j|` at most `tol`
+    /// (normalized coordinates), and the polygon's turn at `c_j` has a sine of at most `tol`
+    /// (G1). Its peak row and the G2 rows of its two joints then count as met.
+    #[inline]
+    fn collapsed(self, alpha: f64, beta: f64, tol: f64) -> bool {
+        self.extent(alpha, beta) <= tol && self.turn_within(tol)
     }
 }
 

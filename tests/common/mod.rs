@@ -135,6 +135,17 @@ impl Lcg {
     }
 }
 
+impl Lcg {
+    /// A random star polygon of `n` points (see [`star_polygon`]): for each point a jitter
+    /// and a radius in [0.35, 1], drawn in that order, at scale 100.
+    pub fn star(&mut self, n: usize) -> Vec<Point> {
+        let raw: Vec<(f64, f64)> = (0..n)
+            .map(|_| (self.next(), 0.35 + 0.65 * self.next()))
+            .collect();
+        star_polygon(&raw, 100.0, 0.0)
+    }
+}
+
 /// A star-shaped polygon from `(jitter, radius)` pairs: the pairs sorted by jitter, point `i`
 /// at angle `(i + 0.6 jitter) / n` of a turn and that radius times `scale`, shifted by
 /// `(shift, -shift)`.

@@ -215,10 +215,7 @@ impl Session {
     /// the last change's (an unconverged curve is flagged again).
     pub fn undo(&mut self) -> bool {
         let done = self.editor.undo();
-        self.last = Change {
-            errors: self.editor.errors(),
-            ..Change::default()
-        };
+        self.restored();
         done
     }
 
@@ -226,11 +223,16 @@ impl Session {
     /// [`Session::undo`]).
     pub fn redo(&mut self) -> bool {
         let done = self.editor.redo();
+        self.restored();
+        done
+    }
+
+    /// After an undo or redo: the last change is the restored state's errors.
+    fn restored(&mut self) {
         self.last = Change {
             errors: self.editor.errors(),
             ..Change::default()
         };
-        done
     }
 
     /// The numbers of the last query.
