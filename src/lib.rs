@@ -127,6 +127,7 @@ mod parallel;
 mod point3;
 #[cfg(feature = "render")]
 pub mod render;
+mod solved;
 mod solver;
 pub mod space;
 mod spline;
@@ -145,6 +146,7 @@ pub use design::{Design, DesignCurve};
 pub use designs::{builtin_design, BUILTIN_DESIGNS};
 pub use error::Error;
 pub use point3::{Point3, Vec3};
+pub use solved::SolvedState;
 pub use space::{SpaceCurve, SpaceOptions};
 pub use spline::{
     svg_path_data, Coords, Scheme, Segment, Shape, SolveOptions, SolveReport, Solver, Solver3,

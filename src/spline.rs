@@ -6,7 +6,7 @@ use crate::basis::{classify, Basis, CubicEk, Extremum, TrigEk};
 use crate::fit::{FitOptions, Fitted};
 use crate::solver::{Edit, Outcome, Problem, Settings, Workspace};
 use crate::trig::TrigBez;
-use crate::{Error, Point3};
+use crate::{Error, Point3, SolvedState};
 
 /// Iterations a warm re-solve may take before the cold cascade takes over.
 const WARM_BUDGET: usize = 100;
@@ -835,6 +835,53 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         self.warm = false;
         self.setup(points, closed, scheme, Some(shape))?;
         self.run()
+    }
+
+    /// Solve starting from a saved solution ([`SolverN::state`] of an earlier solve of the
+    /// same input): that curve again, after no iteration where it is still a solution. A
+    /// state that does not fit the input (another number of segments, a value out of range)
+    /// is ignored, as is one that does not converge within the warm budget: the solve then
+    /// goes on as [`SolverN::solve`] from scratch.
+    pub fn solve_from(
+        &mut self,
+        points: &[P],
+        closed: bool,
+        scheme: Scheme,
+        shape: &Shape,
+        start: &SolvedState,
+    ) -> Result<Spline<P>, Error> {
+        self.warm = false;
+        self.setup(points, closed, scheme, Some(shape))?;
+        let n = self.prob.p.len();
+        if start.controls.len() == n * D {
+            let c: Vec<[f64; D]> = start
+                .controls
+                .chunks_exact(D)
+                .map(|c| self.frame.to_local(core::array::from_fn(|k| c[k])))
+                .collect();
+            self.warm = self
+                .ws
+                .start_at(&self.prob, &c, &start.ratios, &start.peaks);
+            self.ws.invalidate();
+        }
+        self.run()
+    }
+
+    /// The unknowns of the last solve, if it converged (see [`SolvedState`]); `None` before
+    /// any solve, after one that failed, and for straight input (two points, or open input
+    /// on one line), whose solution needs no search.
+    pub fn state(&self) -> Option<SolvedState> {
+        let m = self.points.len();
+        let straight = !self.prob.closed && (m == 2 || collinear(&self.local));
+        if !self.warm || straight || self.prob.p.is_empty() {
+            return None;
+        }
+        let st = &self.ws.state;
+        Some(SolvedState {
+            controls: st.c.iter().flat_map(|&c| self.frame.to_user(c)).collect(),
+            ratios: st.lam.clone(),
+            peaks: st.t.clone(),
+        })
     }
 
     /// Re-solve after the points moved (same count, same topology, scheme and shapes),

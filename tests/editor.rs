@@ -599,6 +599,7 @@ fn failing_sine(n: usize) -> PathDoc {
             .collect(),
         closed: false,
         scheme: Scheme::Kappa,
+        solution: Vec::new(),
     }
 }
 
@@ -697,8 +698,8 @@ fn structural_edits_that_would_blank_a_piece_are_rejected() {
     // Deleting the point between two that coincide.
     let mut twin = doc.clone();
     twin.points[4] = twin.points[2];
-    let (mut e2, _) = Editor::from_doc(twin.clone());
-    let before = e2.to_bezpath();
+    let (mut e2, _) = Editor::from_doc(twin);
+    let (twin, before) = (e2.doc().clone(), e2.to_bezpath());
     let c = e2.delete_point(3);
     assert!(c.rejected && e2.doc() == &twin && e2.to_bezpath() == before);
     // Nothing was pushed on the undo stack by the rejected edits.
@@ -760,5 +761,70 @@ fn huge_drawings_keep_every_piece() {
             hit.distance.is_finite() && hit.distance <= 10.03 * scale,
             "scale {scale:e}: {hit:?}"
         );
+    }
+}
+
+/// Reopening the saved document (a JSON round trip where serde is on) shows the live
+/// curves: the same segments, and no piece fails that solved live.
+fn reopens_as_it_was(e: &Editor) -> Result<(), TestCaseError> {
+    #[cfg(feature = "serde")]
+    let doc: PathDoc = serde_json::from_str(&serde_json::to_string(e.doc()).unwrap()).unwrap();
+    #[cfg(not(feature = "serde"))]
+    let doc = e.doc().clone();
+    let (f, _) = Editor::from_doc(doc);
+    prop_assert_eq!(f.pieces(), e.pieces());
+    let size = e
+        .doc()
+        .points
+        .iter()
+        .map(|p| p.x.abs().max(p.y.abs()))
+        .fold(1.0, f64::max);
+    for k in 0..e.pieces() {
+        if e.piece_error(k).is_some() {
+            continue;
+        }
+        prop_assert!(
+            f.piece_error(k).is_none(),
+            "piece {} fails on reload: {:?}",
+            k,
+            f.piece_error(k)
+        );
+        let (a, b) = (e.piece_spline(k).unwrap(), f.piece_spline(k).unwrap());
+        prop_assert_eq!(a.segments().len(), b.segments().len());
+        for (x, y) in a.segments().iter().zip(b.segments()) {
+            for (p, q) in x.q.iter().zip(&y.q) {
+                prop_assert!(
+                    (*p - *q).hypot() <= 1e-7 * size,
+                    "piece {}: {:?} vs {:?}",
+                    k,
+                    x,
+                    y
+                );
+            }
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 400, ..ProptestConfig::default() })]
+
+    #[test]
+    fn a_saved_document_reopens_with_the_live_curve(
+        scheme in 0usize..3,
+        start in prop::collection::vec((0.0f64..900.0, 0.0f64..600.0), 3..16),
+        closed in any::<bool>(),
+        ops in prop::collection::vec(op(), 1..30),
+    ) {
+        let mut e = Editor::new([Scheme::Kappa, Scheme::EkCubic, Scheme::EkTrig][scheme]);
+        for (x, y) in start {
+            e.add_point(Point::new(x, y));
+        }
+        e.set_closed(closed);
+        reopens_as_it_was(&e)?;
+        for op in &ops {
+            apply(&mut e, op);
+            reopens_as_it_was(&e)?;
+        }
     }
 }

@@ -48,6 +48,7 @@ fn hit_test_at_a_non_finite_point_is_none() {
             .collect(),
         closed: false,
         scheme: Scheme::Kappa,
+        solution: Vec::new(),
     };
     let (ed, _) = Editor::from_doc(doc);
     assert!(ed.hit_test(Point::new(f64::NAN, 0.0)).is_none());

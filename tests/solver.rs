@@ -836,3 +836,76 @@ fn long_curves_use_chord_steps_and_stay_exact() {
         assert!(warm.report().newton_steps <= 3, "{:?}", warm.report());
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
+
+    /// A saved solution reproduces its curve exactly, in no iteration, in every scheme;
+    /// states that do not fit are ignored (the solve is then the cold one).
+    #[test]
+    fn a_saved_state_gives_back_its_curve(
+        pts in (4usize..16).prop_flat_map(star),
+        scheme_i in 0usize..5,
+        closed in any::<bool>(),
+    ) {
+        let (scheme, a) = if scheme_i == 4 { (Scheme::EkTrig, 0.7) } else { SCHEMES[scheme_i] };
+        let shape = shape_of(scheme, a);
+        let mut solver = Solver::new();
+        let Ok(live) = solver.solve(&pts, closed, scheme, &shape) else {
+            // Convergence rates are measured by random_inputs_convergence_rate.
+            return Ok(());
+        };
+        let state = solver.state().unwrap();
+        let n = live.segments().len();
+        prop_assert_eq!((state.controls.len(), state.ratios.len(), state.peaks.len()), (2 * n, n, n));
+        let again = Solver::new().solve_from(&pts, closed, scheme, &shape, &state).unwrap();
+        prop_assert_eq!(again.iterations(), 0);
+        // The same curve, to the rounding of the control points' normalization.
+        let size = drawing_size(&pts);
+        let near = |a: &Spline, b: &Spline| {
+            a.segments().iter().zip(b.segments()).all(|(x, y)| {
+                x.t_max == y.t_max && x.q.iter().zip(&y.q).all(|(p, q)| (*p - *q).hypot() <= 1e-14 * size)
+            })
+        };
+        prop_assert!(near(&again, &live));
+        // Misfits: one segment short, a ratio out of range, a NaN peak.
+        let cold = Solver::new().solve(&pts, closed, scheme, &shape).unwrap();
+        let mut short = state.clone();
+        short.controls.truncate(2 * n - 2);
+        let mut out_of_range = state.clone();
+        out_of_range.ratios[0] = 1.5;
+        let mut nan = state.clone();
+        nan.peaks[n - 1] = f64::NAN;
+        for bad in [short, out_of_range, nan] {
+            let s = Solver::new().solve_from(&pts, closed, scheme, &shape, &bad).unwrap();
+            prop_assert!(near(&s, &cold));
+        }
+    }
+}
+
+#[test]
+fn straight_and_failed_solves_have_no_state() {
+    let mut solver = Solver::new();
+    assert!(solver.state().is_none());
+    let line = [(0.0, 0.0), (1.0, 1.0), (3.0, 3.0)].map(Point::from);
+    solver
+        .solve(&line, false, Scheme::Kappa, &Shape::Neutral)
+        .unwrap();
+    assert!(solver.state().is_none());
+    let two = [(0.0, 0.0), (1.0, 1.0)].map(Point::from);
+    solver
+        .solve(&two, false, Scheme::Kappa, &Shape::Neutral)
+        .unwrap();
+    assert!(solver.state().is_none());
+    let mut capped = Solver::with_options(SolveOptions {
+        max_iterations: 1,
+        ..SolveOptions::default()
+    });
+    let wave: Vec<Point> = (0..12)
+        .map(|i| Point::new(10.0 * i as f64, 50.0 * (0.9 * i as f64).sin()))
+        .collect();
+    assert!(capped
+        .solve(&wave, false, Scheme::Kappa, &Shape::Neutral)
+        .is_err());
+    assert!(capped.state().is_none());
+}

@@ -34,7 +34,7 @@ pub use svg::import_svg;
 use kurbo::{BezPath, Point};
 
 use crate::fit::{FitMethod, FitOptions};
-use crate::{Error, Scheme, Segment, Shape, SolveOptions, Solver, Spline};
+use crate::{Error, Scheme, Segment, Shape, SolveOptions, SolvedState, Solver, Spline};
 
 /// One point of a path being edited.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -69,6 +69,15 @@ pub struct PathDoc {
     pub closed: bool,
     /// The curve scheme.
     pub scheme: Scheme,
+    /// The solution each piece shows, in piece order (`None` for a piece that did not
+    /// solve): kept up to date by the [`Editor`], so that a saved document reopens with the
+    /// curves it showed (see [`SolvedState`]) however it was edited. Empty for a new
+    /// document, or to solve from scratch; an entry that does not fit its piece is ignored.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Vec::is_empty")
+    )]
+    pub solution: Vec<Option<SolvedState>>,
 }
 
 impl Default for PathDoc {
@@ -77,6 +86,7 @@ impl Default for PathDoc {
             points: Vec::new(),
             closed: false,
             scheme: Scheme::Kappa,
+            solution: Vec::new(),
         }
     }
 }
@@ -145,6 +155,8 @@ struct Piece {
     spline: Option<Spline>,
     /// Why the last solve failed (the curve is then that of an earlier state).
     error: Option<Error>,
+    /// Where the next cold solve starts (a saved solution), if anywhere.
+    start: Option<SolvedState>,
 }
 
 /// What an edit did.
@@ -553,12 +565,13 @@ impl Editor {
     /// Restores a snapshot: the document and exactly the curves shown for it; the solvers
     /// are primed by a solve of the restored document so that later edits start warm.
     fn restore(&mut self, snap: Snapshot) {
-        self.doc = snap.doc;
+        self.doc = snap.doc.clone();
         self.rebuild();
         for (piece, (spline, error)) in self.pieces.iter_mut().zip(snap.splines) {
             piece.spline = spline;
             piece.error = error;
         }
+        self.doc = snap.doc;
     }
 
     /// Applies an edit to the document as a new undo step and re-solves what it touched.
@@ -599,6 +612,9 @@ impl Editor {
             Touched::Shapes(p) if same => (p, Resolve::Shapes),
             _ => {
                 let saved = self.pieces.clone();
+                // The saved solutions are those of the old pieces (an unchanged piece starts
+                // from its solver's own).
+                self.doc.solution.clear();
                 let mut change = self.rebuild();
                 if self
                     .pieces
@@ -627,7 +643,9 @@ impl Editor {
         change
     }
 
-    /// Re-cuts the pieces and solves all of them, reusing the solver of an unchanged piece.
+    /// Re-cuts the pieces and solves all of them, each from the document's saved solution
+    /// where it has one, else an unchanged piece from its own last solution, else from
+    /// scratch.
     fn rebuild(&mut self) -> Change {
         let specs = pieces_of(&self.doc);
         let mut old = core::mem::take(&mut self.pieces);
@@ -635,17 +653,26 @@ impl Editor {
             restructured: true,
             ..Change::default()
         };
-        for spec in specs {
+        let mut saved = core::mem::take(&mut self.doc.solution);
+        saved.resize(specs.len(), None);
+        self.doc.solution = vec![None; specs.len()];
+        for (spec, saved) in specs.into_iter().zip(saved) {
             let reuse = old.iter().position(|p| p.spec == spec);
-            let piece = match reuse {
+            let mut piece = match reuse {
                 Some(i) => old.swap_remove(i),
                 None => Piece {
                     spec,
                     solver: Solver::with_options(piece_options()),
                     spline: None,
                     error: None,
+                    start: None,
                 },
             };
+            let own = match piece.error {
+                None => piece.solver.state(),
+                Some(_) => None,
+            };
+            piece.start = saved.or(own);
             self.pieces.push(piece);
         }
         for k in 0..self.pieces.len() {
@@ -699,11 +726,22 @@ impl Editor {
         let result = match how {
             Resolve::Positions if solved => piece.solver.resolve(&pts),
             Resolve::Shapes if solved => piece.solver.resolve_shapes(doc.scheme, &shape),
-            _ => piece
-                .solver
-                .solve(&pts, piece.spec.closed, doc.scheme, &shape),
+            _ => match piece.start.take() {
+                Some(start) => {
+                    piece
+                        .solver
+                        .solve_from(&pts, piece.spec.closed, doc.scheme, &shape, &start)
+                }
+                None => piece
+                    .solver
+                    .solve(&pts, piece.spec.closed, doc.scheme, &shape),
+            },
         };
         change.resolved.push(k);
+        let state = piece.solver.state();
+        if let Some(slot) = self.doc.solution.get_mut(k) {
+            *slot = state;
+        }
         match result {
             Ok(s) if s.converged() => {
                 change.iterations += s.iterations();
@@ -934,6 +972,7 @@ mod tests {
                 .collect(),
             closed,
             scheme: Scheme::EkCubic,
+            solution: Vec::new(),
         }
     }
 

@@ -80,5 +80,6 @@ fn doc_of(pts: &[Point], closed: bool, scheme: Scheme) -> PathDoc {
             .collect(),
         closed,
         scheme,
+        solution: Vec::new(),
     }
 }

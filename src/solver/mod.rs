@@ -797,6 +797,37 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         self.window.invalidate();
     }
 
+    /// Allocate for `prob` and start from the given unknowns (in the normalized frame), as
+    /// if a solve had just ended there: the next solve starts warm from them. `false`, with
+    /// a cold start instead, if they do not fit `prob` (another count, a value out of its
+    /// range or not finite).
+    pub(crate) fn start_at(
+        &mut self,
+        prob: &Problem<D>,
+        c: &[[f64; D]],
+        lam: &[f64],
+        t: &[f64],
+    ) -> bool {
+        self.cold_start(prob);
+        let n = prob.p.len();
+        let fits = c.len() == n
+            && lam.len() == n
+            && t.len() == n
+            && c.iter().flatten().all(|x| x.is_finite())
+            && lam.iter().all(|l| (0.0..=1.0).contains(l))
+            && t.iter().all(|t| (0.0..=1.0).contains(t))
+            && (prob.closed || lam[n - 1] == 1.0);
+        if fits {
+            let st = &mut self.state;
+            st.c.copy_from_slice(c);
+            st.lam.copy_from_slice(lam);
+            st.t.copy_from_slice(t);
+            self.trial.clone_from(&self.state);
+        }
+        self.edit = None;
+        fits
+    }
+
     /// Before a warm re-solve changes the problem: if the stored factors are stale, assemble
     /// the Jacobian at the current state, the solution of `prob` (it does not depend on the
     /// target points, only on the unknowns).

@@ -327,6 +327,7 @@ pub fn editor(data: &[u8]) {
                     .collect(),
                 closed: g.flag(),
                 scheme,
+                solution: Vec::new(),
             };
             Editor::from_doc(doc).0
         }
