@@ -67,6 +67,73 @@ impl<'a> FontOutlines<'a> {
         f64::from(self.face.descender())
     }
 
+    /// The glyph id the font maps `ch` to.
+    pub fn glyph_id(&self, ch: char) -> Option<u16> {
+        self.face.glyph_index(ch).map(|g| g.0)
+    }
+
+    /// Every character the font maps, by glyph id (in code point order).
+    pub fn char_map(&self) -> std::collections::HashMap<u16, Vec<char>> {
+        let mut map: std::collections::HashMap<u16, Vec<char>> = std::collections::HashMap::new();
+        if let Some(cmap) = self.face.tables().cmap {
+            for sub in cmap.subtables {
+                if !sub.is_unicode() {
+                    continue;
+                }
+                sub.codepoints(|cp| {
+                    if let (Some(ch), Some(id)) = (char::from_u32(cp), sub.glyph_index(cp)) {
+                        let chars = map.entry(id.0).or_default();
+                        if !chars.contains(&ch) {
+                            chars.push(ch);
+                        }
+                    }
+                });
+            }
+        }
+        for chars in map.values_mut() {
+            chars.sort_unstable();
+        }
+        map
+    }
+
+    /// The number of glyphs.
+    pub fn glyph_count(&self) -> u16 {
+        self.face.number_of_glyphs()
+    }
+
+    /// The name of glyph `id` (from the `post` table or the CFF charset), if the font has
+    /// one.
+    pub fn glyph_name(&self, id: u16) -> Option<&str> {
+        self.face.glyph_name(ttf_parser::GlyphId(id))
+    }
+
+    /// The advance width of glyph `id` in font units.
+    pub fn advance(&self, id: u16) -> f64 {
+        f64::from(
+            self.face
+                .glyph_hor_advance(ttf_parser::GlyphId(id))
+                .unwrap_or(0),
+        )
+    }
+
+    /// The outline of glyph `id` (components resolved), as [`FontOutlines::glyph`] reads it.
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Font`] for a malformed outline.
+    pub fn outline(&self, id: u16) -> Result<BezPath, Error> {
+        let mut builder = Builder(BezPath::new());
+        let bbox = self
+            .face
+            .outline_glyph(ttf_parser::GlyphId(id), &mut builder);
+        if bbox.is_none() && !builder.0.elements().is_empty() {
+            return Err(Error::Font(format!(
+                "the outline of glyph {id} is malformed"
+            )));
+        }
+        Ok(builder.0)
+    }
+
     /// The outline of the glyph the font maps `ch` to.
     ///
     /// # Errors

@@ -39,6 +39,7 @@
 //! # Ok::<(), kappa::Error>(())
 //! ```
 
+mod direction;
 mod draft;
 mod export;
 #[cfg(feature = "font")]
@@ -47,9 +48,14 @@ mod font;
 mod import;
 #[cfg(feature = "render")]
 mod picture;
+#[cfg(feature = "font")]
+mod rebuild;
 #[cfg(feature = "tessellate")]
 mod tessellate;
+#[cfg(feature = "font")]
+mod ufo;
 
+pub use direction::{orient, Direction};
 pub use draft::{
     draft, draft_points, hausdorff, Anchor, AnchorKind, DraftOptions, DraftShape, DraftedContour,
     DraftedGlyph, Piece, AUTO_MAX_SHAPE, AUTO_MIN_TRIG_SHAPE, AUTO_RELATIVE_TOLERANCE,
@@ -66,8 +72,12 @@ pub use import::{FontOutlines, Glyph};
 pub use picture::{word_figure, FIGURE_WORD};
 #[cfg(feature = "render")]
 pub use picture::{word_scene, PlacedGlyph};
+#[cfg(feature = "font")]
+pub use rebuild::{drawn_glyph_ids, rebuild_ttf, RebuildOptions};
 #[cfg(feature = "tessellate")]
 pub use tessellate::{fill_mesh, stroke_mesh, Mesh};
+#[cfg(feature = "font")]
+pub use ufo::{rebuild_ufo, KAPPA_LIB_KEY};
 
 use kurbo::{BezPath, ParamCurve, PathEl, PathSeg, Point};
 

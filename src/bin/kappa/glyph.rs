@@ -329,7 +329,7 @@ pub fn run(args: &GlyphArgs) -> Result<ExitCode> {
 
 /// The `--shape` value: none (neutral), `auto`, or a number; only for the εκ schemes (the
 /// range is checked by the drafting, as [`kappa::Error::ShapeOutOfRange`]).
-fn parse_shape(shape: Option<&str>, scheme: Scheme) -> Result<DraftShape> {
+pub(crate) fn parse_shape(shape: Option<&str>, scheme: Scheme) -> Result<DraftShape> {
     let Some(text) = shape else {
         return Ok(DraftShape::Neutral);
     };

@@ -9,6 +9,7 @@ mod builtin;
 mod curve;
 mod diff;
 mod failure;
+mod font;
 mod gallery;
 mod glyph;
 mod hermite;
@@ -56,6 +57,7 @@ enum Command {
     Space(space::SpaceArgs),
     Hermite(hermite::HermiteArgs),
     Glyph(glyph::GlyphArgs),
+    Font(font::FontArgs),
 }
 
 fn main() -> ExitCode {
@@ -73,6 +75,7 @@ fn main() -> ExitCode {
         Command::Space(args) => space::run(args),
         Command::Hermite(args) => hermite::run(args),
         Command::Glyph(args) => glyph::run(args),
+        Command::Font(args) => font::run(args),
     });
     match result {
         Ok(Ok(code)) => code,

@@ -1,0 +1,296 @@
+//! `kappa font`: draft the glyphs of a whole font as κ/εκ contours and write the font
+//! back as TrueType and/or UFO, with a JSON report.
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use clap::Args;
+use kappa::editor::{EditPoint, PathDoc};
+use kappa::glyph::{
+    draft, drawn_glyph_ids, rebuild_ttf, rebuild_ufo, AnchorKind, DraftOptions, DraftedGlyph,
+    FontOutlines, RebuildOptions,
+};
+use kappa::Scheme;
+use kurbo::BezPath;
+use serde::Serialize;
+
+use crate::curve::SchemeName;
+use crate::failure::{self, Failure, Result};
+use crate::glyph::parse_shape;
+
+/// Draft the glyphs of a whole font and write it back as TrueType and/or UFO.
+#[derive(Debug, Args)]
+#[command(
+    long_about = "Draft the glyphs of a TrueType/OpenType font (TrueType or CFF outlines) as κ- \
+        or εκ-curves, as `kappa glyph` drafts one, and write the whole font back: every other \
+        glyph as the source has it (composites stay composites), the glyph names, character \
+        map, advance widths and vertical metrics kept.\n\n\
+        Output files, by extension (--out may be given several times):\n  \
+        .ttf  TrueType: quadratics on the integer grid (cubic drafts converted within \
+        --quad-tolerance), outer contours clockwise; head, hhea, maxp, OS/2 (version 4), \
+        name, post (format 2) recomputed, layout tables kept\n  \
+        .ufo  a UFO 3 source: the drafted outlines exactly, as cubics (κ quadratics raised \
+        to the cubics that trace them), outer contours counter-clockwise; each drafted glyph keeps its κ source in \
+        its lib under org.kappa.contours (a JSON list of path-tool documents)\n\n\
+        The new font's family is --family (default \"Kappa Draft\"): a modified font may not \
+        use its source's Reserved Font Names.\n\n\
+        Output (stdout), one JSON object on one line: {\"font\": file, \"units_per_em\": u, \
+        \"scheme\": ..., \"tolerance\": t, \"glyphs\": [{\"name\", \"char\", \"glyph_id\", \
+        \"hausdorff\", \"within_tolerance\", \"anchors\", \"fallback\"}, ...], \"drafted\": n, \
+        \"within_tolerance\": n, \"fallback_glyphs\": n, \"seconds\": s, \"out\": [{\"file\", \
+        \"format\"}]}. 'char' is null for a glyph no character maps to.\n\n\
+        On any error (unreadable font, a character the font lacks, unknown extension, bad \
+        option) the exit code is 2, stderr holds one 'kappa: error:' line and stdout stays \
+        empty.",
+    after_help = "Examples:\n  \
+        kappa font --font DejaVuSans.ttf --chars abc --out draft.ttf --out draft.ufo\n  \
+        kappa font --font EBGaramond.otf --scheme ek-cubic --family \"My Draft\" --out draft.ufo"
+)]
+pub struct FontArgs {
+    /// The TrueType/OpenType font file (the first face of a collection).
+    #[arg(long, value_name = "FILE")]
+    font: PathBuf,
+    /// Draft the glyphs of these characters [default: every glyph with contours].
+    #[arg(long, value_name = "STRING")]
+    chars: Option<String>,
+    /// The curve scheme.
+    #[arg(long, value_enum, value_name = "SCHEME", default_value = "kappa")]
+    scheme: SchemeName,
+    /// The εκ shape parameter: a number, or "auto" (as for `kappa glyph`).
+    #[arg(long, value_name = "A|auto", allow_negative_numbers = true)]
+    shape: Option<String>,
+    /// Largest distance of a draft from its glyph, in font units [default: 0.004 em].
+    #[arg(long, value_name = "UNITS", allow_negative_numbers = true)]
+    tolerance: Option<f64>,
+    /// Largest distance of the TrueType quadratics from cubic drafts, in font units.
+    #[arg(
+        long,
+        value_name = "UNITS",
+        default_value_t = 0.5,
+        allow_negative_numbers = true
+    )]
+    quad_tolerance: f64,
+    /// The family name of the written font.
+    #[arg(long, value_name = "NAME", default_value = "")]
+    family: String,
+    /// Write the font to FILE (.ttf or .ufo); may be repeated.
+    #[arg(long, value_name = "FILE", required = true)]
+    out: Vec<PathBuf>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+enum Format {
+    Ttf,
+    Ufo,
+}
+
+impl Format {
+    fn of(path: &Path) -> Result<Format> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        match ext.as_deref() {
+            Some("ttf") => Ok(Format::Ttf),
+            Some("ufo") => Ok(Format::Ufo),
+            _ => Err(Failure::new(format!(
+                "cannot tell the format of {}: expected the extension .ttf or .ufo",
+                path.display()
+            ))),
+        }
+    }
+}
+
+#[derive(Debug, Serialize)]
+struct GlyphReport {
+    name: String,
+    #[serde(rename = "char")]
+    ch: Option<String>,
+    glyph_id: u16,
+    hausdorff: f64,
+    within_tolerance: bool,
+    anchors: usize,
+    fallback: bool,
+}
+
+#[derive(Debug, Serialize)]
+struct FileReport {
+    file: String,
+    format: Format,
+}
+
+#[derive(Debug, Serialize)]
+struct Report {
+    font: String,
+    units_per_em: f64,
+    scheme: SchemeName,
+    tolerance: f64,
+    glyphs: Vec<GlyphReport>,
+    drafted: usize,
+    within_tolerance: usize,
+    fallback_glyphs: usize,
+    seconds: f64,
+    out: Vec<FileReport>,
+}
+
+/// Runs `kappa font`.
+pub fn run(args: &FontArgs) -> Result<ExitCode> {
+    let start = Instant::now();
+    let formats = args
+        .out
+        .iter()
+        .map(|p| Format::of(p))
+        .collect::<Result<Vec<_>>>()?;
+    if !(args.quad_tolerance.is_finite() && args.quad_tolerance > 0.0) {
+        return Err(Failure::new("--quad-tolerance must be a positive number"));
+    }
+    let scheme = args.scheme.scheme();
+    let shape = parse_shape(args.shape.as_deref(), scheme)?;
+    let data = std::fs::read(&args.font)
+        .map_err(|e| Failure::new(format!("cannot read {}: {e}", args.font.display())))?;
+    let font =
+        FontOutlines::parse(&data).map_err(|e| Failure::new(e).context(args.font.display()))?;
+    let upem = font.units_per_em();
+    let mut options = DraftOptions::for_units_per_em(upem).with_scheme(scheme, shape);
+    if let Some(t) = args.tolerance {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(Failure::new("--tolerance must be a positive number"));
+        }
+        options.tolerance = t;
+    }
+    let chars = font.char_map();
+    let drawn = drawn_glyph_ids(&data).map_err(|e| Failure::new(e).context(args.font.display()))?;
+    let ids: Vec<u16> = match &args.chars {
+        None => drawn,
+        Some(text) => {
+            let mut ids = Vec::new();
+            for ch in text.chars() {
+                let id = font
+                    .glyph_id(ch)
+                    .ok_or_else(|| Failure::new(format!("the font has no glyph for {ch:?}")))?;
+                // A composite follows its components: draft those.
+                if drawn.binary_search(&id).is_ok() && !ids.contains(&id) {
+                    ids.push(id);
+                }
+            }
+            ids
+        }
+    };
+    let names: Vec<String> = (0..font.glyph_count())
+        .map(|id| {
+            font.glyph_name(id)
+                .map_or_else(|| format!("glyph{id:05}"), str::to_owned)
+        })
+        .collect();
+    let mut replaced: HashMap<u16, BezPath> = HashMap::new();
+    let mut sources: HashMap<u16, String> = HashMap::new();
+    let mut glyphs = Vec::with_capacity(ids.len());
+    for &id in &ids {
+        let outline = font.outline(id).map_err(Failure::new)?;
+        let report = |drafted: Option<&DraftedGlyph>| GlyphReport {
+            name: names[usize::from(id)].clone(),
+            ch: chars
+                .get(&id)
+                .and_then(|c| c.first())
+                .map(|c| c.to_string()),
+            glyph_id: id,
+            hausdorff: drafted.and_then(|d| d.hausdorff).unwrap_or(0.0),
+            within_tolerance: drafted.is_some_and(DraftedGlyph::within_tolerance),
+            anchors: drafted.map_or(0, DraftedGlyph::anchor_count),
+            fallback: drafted.map_or(true, |d| d.fallback_count() > 0),
+        };
+        match draft(&outline, &options) {
+            Ok(d) => {
+                glyphs.push(report(Some(&d)));
+                sources.insert(id, kappa_source(&d, scheme)?);
+                replaced.insert(id, d.path);
+            }
+            // The glyph is kept as the source has it, flagged.
+            Err(_) => glyphs.push(report(None)),
+        }
+    }
+    let timestamp = std::env::var("SOURCE_DATE_EPOCH")
+        .ok()
+        .and_then(|v| v.parse::<i64>().ok())
+        .unwrap_or_else(|| {
+            std::time::SystemTime::now()
+                .duration_since(std::time::UNIX_EPOCH)
+                .map_or(0, |d| d.as_secs() as i64)
+        });
+    let rebuild = RebuildOptions {
+        family: args.family.clone(),
+        quad_tolerance: args.quad_tolerance,
+        timestamp,
+    };
+    let mut out = Vec::with_capacity(args.out.len());
+    for (path, &format) in args.out.iter().zip(&formats) {
+        match format {
+            Format::Ttf => {
+                let bytes = rebuild_ttf(&data, &replaced, &rebuild).map_err(Failure::new)?;
+                failure::write_file(path, &bytes)?;
+            }
+            Format::Ufo => {
+                rebuild_ufo(&data, &replaced, &sources, &rebuild, path).map_err(Failure::new)?;
+            }
+        }
+        out.push(FileReport {
+            file: path.display().to_string(),
+            format,
+        });
+    }
+    let report = Report {
+        font: args.font.display().to_string(),
+        units_per_em: upem,
+        scheme: args.scheme,
+        tolerance: options.tolerance,
+        drafted: glyphs.len(),
+        within_tolerance: glyphs.iter().filter(|g| g.within_tolerance).count(),
+        fallback_glyphs: glyphs.iter().filter(|g| g.fallback).count(),
+        glyphs,
+        seconds: start.elapsed().as_secs_f64(),
+        out,
+    };
+    let mut text = serde_json::to_string(&report)
+        .map_err(|e| Failure::new(format!("cannot write JSON: {e}")))?;
+    text.push('\n');
+    failure::print_stdout(&text)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The κ source of a drafted glyph: one path-tool document ([`PathDoc`]) per contour,
+/// its anchors in order with their shapes, piece ends as corners; as JSON.
+fn kappa_source(drafted: &DraftedGlyph, scheme: Scheme) -> Result<String> {
+    let docs: Vec<PathDoc> = drafted
+        .contours
+        .iter()
+        .map(|c| {
+            let mut points = Vec::new();
+            let single = matches!(c.pieces.as_slice(), [p] if p.closed);
+            for p in &c.pieces {
+                let take = if single {
+                    p.anchors.len()
+                } else {
+                    p.anchors.len().saturating_sub(1)
+                };
+                for (k, a) in p.anchors.iter().take(take).enumerate() {
+                    points.push(EditPoint {
+                        x: a.point.x,
+                        y: a.point.y,
+                        shape: a.a,
+                        corner: !single && (k == 0 || a.kind == AnchorKind::Corner),
+                    });
+                }
+            }
+            PathDoc {
+                points,
+                closed: true,
+                scheme,
+                solution: Vec::new(),
+            }
+        })
+        .collect();
+    serde_json::to_string(&docs).map_err(|e| Failure::new(format!("cannot write JSON: {e}")))
+}

@@ -1,0 +1,231 @@
+//! Tests of `kappa font`: a whole font drafted and written back as TrueType and UFO, read
+//! back here (ttf-parser, norad) and left in `target/font-check/` for the external
+//! validators that `.ci/run` runs on them (OpenType Sanitizer, fontTools, ufoLib2, fontmake:
+//! `tests/check_fonts.py`).
+#![cfg(feature = "cli")]
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use kappa::editor::{Editor, PathDoc};
+use kappa::glyph::{hausdorff, FontOutlines, KAPPA_LIB_KEY};
+use kurbo::{BezPath, PathEl, Shape};
+use serde_json::Value;
+
+fn dejavu() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fonts/DejaVuSans.ttf")
+}
+
+/// The directory the external validators check.
+fn font_check() -> PathBuf {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/font-check");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs `kappa font` and parses its report.
+fn font(args: &[&str]) -> Value {
+    let out = common::run_kappa(args, "");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+/// Each closed contour of `path` with its signed area (kurbo: positive is counter-clockwise
+/// with y up) and whether another contour encloses it an odd number of times (a counter).
+fn contour_roles(path: &BezPath) -> Vec<(f64, bool)> {
+    let mut subs: Vec<BezPath> = Vec::new();
+    for el in path.elements() {
+        if matches!(el, PathEl::MoveTo(_)) {
+            subs.push(BezPath::new());
+        }
+        subs.last_mut().unwrap().push(*el);
+    }
+    subs.iter()
+        .enumerate()
+        .map(|(i, s)| {
+            let probe = kurbo::ParamCurve::eval(&s.segments().next().unwrap(), 0.5);
+            let depth = subs
+                .iter()
+                .enumerate()
+                .filter(|&(j, o)| j != i && o.winding(probe) != 0)
+                .count();
+            (s.area(), depth % 2 == 1)
+        })
+        .collect()
+}
+
+#[test]
+fn a_truetype_font_is_drafted_and_written_whole() {
+    let dir = font_check();
+    let (ttf, ufo) = (dir.join("dejavu-kappa.ttf"), dir.join("dejavu-kappa.ufo"));
+    let chars = "aeoBS&@é";
+    let src = dejavu();
+    let report = font(&[
+        "font",
+        "--font",
+        src.to_str().unwrap(),
+        "--chars",
+        chars,
+        "--family",
+        "Kappa Test",
+        "--out",
+        ttf.to_str().unwrap(),
+        "--out",
+        ufo.to_str().unwrap(),
+    ]);
+    let source_bytes = std::fs::read(&src).unwrap();
+    let source = FontOutlines::parse(&source_bytes).unwrap();
+    let tolerance = report["tolerance"].as_f64().unwrap();
+    assert!((tolerance - 0.004 * 2048.0).abs() < 1e-9);
+    // é is a composite in DejaVu Sans: its components (e and the accent) are drafted
+    // instead, and it stays a composite.
+    let glyphs = report["glyphs"].as_array().unwrap();
+    let drafted: Vec<u16> = glyphs
+        .iter()
+        .map(|g| g["glyph_id"].as_u64().unwrap() as u16)
+        .collect();
+    assert_eq!(report["drafted"].as_u64().unwrap() as usize, glyphs.len());
+    assert!(glyphs.len() >= 7, "{report}");
+    for g in glyphs {
+        assert!(g["within_tolerance"].as_bool().unwrap(), "{g}");
+        assert!(!g["fallback"].as_bool().unwrap(), "{g}");
+        assert!(g["anchors"].as_u64().unwrap() >= 4, "{g}");
+    }
+
+    // The TrueType font: the same glyph set, names, character map and advances; drafted
+    // glyphs within the tolerance (plus the quadratic conversion and the grid) of the source,
+    // outer contours clockwise.
+    let bytes = std::fs::read(&ttf).unwrap();
+    let out = FontOutlines::parse(&bytes).unwrap();
+    assert_eq!(out.glyph_count(), source.glyph_count());
+    assert_eq!(out.char_map(), source.char_map());
+    for id in 0..source.glyph_count() {
+        assert_eq!(out.glyph_name(id), source.glyph_name(id), "glyph {id}");
+        assert_eq!(out.advance(id), source.advance(id), "glyph {id}");
+    }
+    for &id in &drafted {
+        let (a, b) = (out.outline(id).unwrap(), source.outline(id).unwrap());
+        let d = hausdorff(&a, &b, 64);
+        assert!(d <= tolerance + 0.5 + 1.0, "glyph {id}: {d}");
+        for (area, counter) in contour_roles(&a) {
+            assert!(
+                (area < 0.0) != counter,
+                "glyph {id}: area {area}, counter {counter}"
+            );
+        }
+    }
+    // Undrafted glyphs are the source's, point for point.
+    for id in [36u16, 100, 300] {
+        if !drafted.contains(&id) {
+            assert_eq!(out.outline(id).unwrap(), source.outline(id).unwrap());
+        }
+    }
+
+    // The UFO: every glyph in order, outer contours counter-clockwise, the κ source of each
+    // drafted glyph in its lib, re-solved by the path tool to the drafted outline.
+    let ufo_font = norad::Font::load(&ufo).unwrap();
+    let layer = ufo_font.default_layer();
+    assert_eq!(layer.len(), usize::from(source.glyph_count()));
+    let order = ufo_font.lib["public.glyphOrder"].as_array().unwrap();
+    assert_eq!(order.len(), usize::from(source.glyph_count()));
+    assert_eq!(
+        ufo_font.font_info.family_name.as_deref(),
+        Some("Kappa Test")
+    );
+    assert_eq!(
+        ufo_font.font_info.units_per_em.map(|u| u.as_f64()),
+        Some(2048.0)
+    );
+    for &id in &drafted {
+        let name = source.glyph_name(id).unwrap();
+        let glyph = layer.get_glyph(name).unwrap();
+        let mut path = BezPath::new();
+        for c in &glyph.contours {
+            path.extend(c.to_kurbo().unwrap().elements().iter().copied());
+            path.close_path();
+        }
+        for (area, counter) in contour_roles(&path) {
+            assert!(
+                (area > 0.0) != counter,
+                "{name}: area {area}, counter {counter}"
+            );
+        }
+        let text = glyph.lib[KAPPA_LIB_KEY].as_string().unwrap();
+        let docs: Vec<PathDoc> = serde_json::from_str(text).unwrap();
+        assert_eq!(docs.len(), glyph.contours.len(), "{name}");
+        let mut resolved = BezPath::new();
+        for doc in docs {
+            let (editor, change) = Editor::from_doc(doc);
+            assert!(change.errors.is_empty(), "{name}: {:?}", change.errors);
+            resolved.extend(editor.to_bezpath().elements().iter().copied());
+        }
+        let d = hausdorff(&resolved, &path, 64);
+        assert!(
+            d <= 1e-6 * 2048.0,
+            "{name}: re-solved source {d} from the drafted outline"
+        );
+    }
+}
+
+#[test]
+fn font_errors_are_one_line() {
+    let src = dejavu();
+    let dir = font_check();
+    let ttf = dir.join("never-written.ttf");
+    for (args, what) in [
+        (vec!["--chars", "a", "--out", "x.otf"], "format"),
+        (
+            vec!["--chars", "\u{10FFFD}", "--out", ttf.to_str().unwrap()],
+            "no glyph",
+        ),
+        (
+            vec!["--tolerance", "-1", "--out", ttf.to_str().unwrap()],
+            "tolerance",
+        ),
+        (
+            vec!["--quad-tolerance", "0", "--out", ttf.to_str().unwrap()],
+            "quad-tolerance",
+        ),
+        (
+            vec![
+                "--scheme",
+                "kappa",
+                "--shape",
+                "0.8",
+                "--out",
+                ttf.to_str().unwrap(),
+            ],
+            "shape",
+        ),
+    ] {
+        let mut all = vec!["font", "--font", src.to_str().unwrap()];
+        all.extend(args);
+        let out = common::run_kappa(&all, "");
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{what}: {err}");
+        assert!(out.stdout.is_empty(), "{what}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{what}: {err}");
+        assert!(err.contains(what), "{what}: {err}");
+    }
+    let scratch = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-font");
+    std::fs::create_dir_all(&scratch).unwrap();
+    let not_a_font = scratch.join("not-a-font.bin");
+    std::fs::write(&not_a_font, b"not a font at all").unwrap();
+    let out = common::run_kappa(
+        &[
+            "font",
+            "--font",
+            not_a_font.to_str().unwrap(),
+            "--out",
+            ttf.to_str().unwrap(),
+        ],
+        "",
+    );
+    assert_eq!(out.status.code(), Some(2));
+    assert!(!ttf.exists());
+}
