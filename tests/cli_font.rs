@@ -229,3 +229,64 @@ fn font_errors_are_one_line() {
     assert_eq!(out.status.code(), Some(2));
     assert!(!ttf.exists());
 }
+
+#[test]
+fn a_cff_font_becomes_truetype_and_ufo() {
+    let dir = font_check();
+    let (ttf, ufo) = (
+        dir.join("garamond-kappa.ttf"),
+        dir.join("garamond-kappa.ufo"),
+    );
+    let src =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fonts/EBGaramond12-Regular-subset.otf");
+    let report = font(&[
+        "font",
+        "--font",
+        src.to_str().unwrap(),
+        "--chars",
+        "aoSg&",
+        "--scheme",
+        "ek-cubic",
+        "--out",
+        ttf.to_str().unwrap(),
+        "--out",
+        ufo.to_str().unwrap(),
+    ]);
+    assert_eq!(report["drafted"], 5, "{report}");
+    let source_bytes = std::fs::read(&src).unwrap();
+    let source = FontOutlines::parse(&source_bytes).unwrap();
+    let bytes = std::fs::read(&ttf).unwrap();
+    let out = FontOutlines::parse(&bytes).unwrap();
+    assert_eq!(out.glyph_count(), source.glyph_count());
+    assert_eq!(out.char_map(), source.char_map());
+    let drafted: Vec<u16> = report["glyphs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|g| g["glyph_id"].as_u64().unwrap() as u16)
+        .collect();
+    // Every glyph is now TrueType: quadratics on the grid, outer contours clockwise; the
+    // glyphs not drafted are the source's cubics within the conversion tolerance and the
+    // grid (0.5 + 0.5√2 units).
+    for id in 0..source.glyph_count() {
+        assert_eq!(out.glyph_name(id), source.glyph_name(id));
+        assert_eq!(out.advance(id), source.advance(id));
+        let a = out.outline(id).unwrap();
+        assert!(a.segments().all(|s| !matches!(s, kurbo::PathSeg::Cubic(_))));
+        for (area, counter) in contour_roles(&a) {
+            assert!(
+                (area < 0.0) != counter,
+                "glyph {id}: area {area}, counter {counter}"
+            );
+        }
+        if !drafted.contains(&id) && !a.elements().is_empty() {
+            let d = hausdorff(&a, &source.outline(id).unwrap(), 64);
+            assert!(d <= 0.5 + 0.75, "glyph {id}: {d}");
+        }
+    }
+    let ufo_font = norad::Font::load(&ufo).unwrap();
+    assert_eq!(
+        ufo_font.default_layer().len(),
+        usize::from(source.glyph_count())
+    );
+}
