@@ -721,6 +721,26 @@ fn golden_glyph_sample_figure() {
     ));
 }
 
+/// The same figure from a cubic (CFF) font, EB Garamond 12 (`kappa gallery` writes it as
+/// `glyph-garamond.png`): its cubic originals with their combs, κ and auto-shaped εκ-cubic
+/// drafts.
+#[test]
+fn golden_glyph_garamond_figure() {
+    let data = std::fs::read(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fonts/EBGaramond12-Regular-subset.otf"),
+    )
+    .unwrap();
+    let font = FontOutlines::parse(&data).unwrap();
+    let kappa = DraftOptions::for_units_per_em(font.units_per_em());
+    let ek = kappa.clone().with_scheme(Scheme::EkCubic, DraftShape::Auto);
+    let scene = word_figure(&font, FIGURE_WORD, &[kappa, ek], 1200, 1000).unwrap();
+    let image = scene.render().unwrap();
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden/glyph-garamond.png");
+    if let Err(e) = check_golden(&path, &image, Tolerance::DEFAULT) {
+        panic!("{e}");
+    }
+}
+
 /// The on-curve points split into stored and implied ones: DejaVu's 'o' stores few and
 /// implies the rest; the counts agree with `on_curve_points`.
 #[test]

@@ -58,12 +58,54 @@ fn placed_bounds(glyphs: &[PlacedGlyph<'_>]) -> Option<Rect> {
         .reduce(|a, b| a.union(b))
 }
 
-/// Adds drafted glyphs to a scene: originals in light grey, then the combs (at `scale`),
-/// then the drafted outlines in black and their anchors in red.
+/// A comb (teeth `base → tip` joined tip to tip, as [`crate::analysis::curvature_comb`]
+/// draws them) with every tooth cut to at most `max_len`: the teeth of tight terminals and
+/// serifs, whose |κ| is beyond [`COMB_KAPPA_CAP`], would otherwise cross the whole picture.
+fn clip_teeth(comb: &BezPath, max_len: f64) -> BezPath {
+    // Each tooth, and whether the comb joins its tip to the next one (not across contours).
+    let mut teeth: Vec<(Point, Point, bool)> = Vec::new();
+    let mut base = None;
+    for el in comb.elements() {
+        match *el {
+            kurbo::PathEl::MoveTo(p) => base = Some(p),
+            kurbo::PathEl::LineTo(tip) => match base.take() {
+                Some(b) => {
+                    let v = tip - b;
+                    let len = v.hypot();
+                    let tip = if len > max_len {
+                        b + v * (max_len / len)
+                    } else {
+                        tip
+                    };
+                    teeth.push((b, tip, false));
+                }
+                None => {
+                    if let Some(t) = teeth.last_mut() {
+                        t.2 = true;
+                    }
+                }
+            },
+            _ => {}
+        }
+    }
+    let mut out = BezPath::new();
+    for (j, &(b, tip, joined)) in teeth.iter().enumerate() {
+        out.move_to(b);
+        out.line_to(tip);
+        if let (true, Some(&(_, next, _))) = (joined, teeth.get(j + 1)) {
+            out.line_to(next);
+        }
+    }
+    out
+}
+
+/// Adds drafted glyphs to a scene: originals in light grey, then the combs (at `scale`,
+/// teeth at most `max_tooth` long), then the drafted outlines in black and their anchors in
+/// red.
 fn draw_drafts(
     mut scene: Scene,
     glyphs: &[PlacedGlyph<'_>],
-    scale: f64,
+    (scale, max_tooth): (f64, f64),
     anchor: PointStyle,
 ) -> Scene {
     for g in glyphs {
@@ -73,7 +115,8 @@ fn draw_drafts(
     for g in glyphs {
         let t = Affine::translate(g.offset);
         for piece in g.drafted.pieces() {
-            scene = scene.comb(&(t * piece.spline.curvature_comb(scale, COMB_SAMPLES)));
+            let comb = piece.spline.curvature_comb(scale, COMB_SAMPLES);
+            scene = scene.comb(&(t * clip_teeth(&comb, max_tooth)));
         }
     }
     for g in glyphs {
@@ -108,7 +151,8 @@ pub fn word_scene(
         COMB_FRACTION,
     );
     let scene = Scene::new().with_size(width, height).with_y_down(false);
-    let mut scene = draw_drafts(scene, glyphs, scale, PointStyle::INPUT);
+    let max_tooth = scale * COMB_KAPPA_CAP / units_per_em;
+    let mut scene = draw_drafts(scene, glyphs, (scale, max_tooth), PointStyle::INPUT);
     let pad = 0.05 * units_per_em;
     if let Some(v) = view.or(placed_bounds(glyphs).map(|b| b.inflate(pad, pad))) {
         scene = scene.with_view_box(v);
@@ -123,8 +167,9 @@ pub use figure::{word_figure, FIGURE_WORD};
 mod figure {
     use kurbo::{Affine, Vec2};
 
-    use super::{comb_scale, draw_drafts, placed_bounds, PlacedGlyph, COMB_SAMPLES};
+    use super::{clip_teeth, comb_scale, draw_drafts, placed_bounds, PlacedGlyph};
     use super::{Color, PointStyle, Scene, Style};
+    use super::{COMB_KAPPA_CAP, COMB_SAMPLES};
     use crate::glyph::{draft, on_curve_split, DraftOptions, DraftedGlyph, FontOutlines, Glyph};
     use crate::Error;
 
@@ -205,11 +250,8 @@ mod figure {
             let t = Affine::translate(g.offset);
             let original = t * g.original.clone();
             scene = scene.path(&original, Style::filled(Color::LIGHT_GRAY));
-            scene = scene.comb(&crate::analysis::curvature_comb(
-                &original,
-                scale,
-                COMB_SAMPLES,
-            ));
+            let comb = crate::analysis::curvature_comb(&original, scale, COMB_SAMPLES);
+            scene = scene.comb(&clip_teeth(&comb, scale * COMB_KAPPA_CAP / upem));
             let (s, i) = on_curve_split(&original);
             stored.extend(s);
             implied.extend(i);
@@ -224,7 +266,7 @@ mod figure {
             if let Some(b) = placed_bounds(&row) {
                 bounds = Some(bounds.map_or(b, |a| a.union(b)));
             }
-            scene = draw_drafts(scene, &row, scale, ANCHOR);
+            scene = draw_drafts(scene, &row, (scale, scale * COMB_KAPPA_CAP / upem), ANCHOR);
         }
         let pad = 0.05 * upem;
         if let Some(b) = bounds {

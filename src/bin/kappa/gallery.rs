@@ -39,6 +39,8 @@ const GLYPH_FIGURE_SIZE: (u32, u32) = (1200, 1000);
 /// The vendored font of the glyph figure (DejaVu Sans, Bitstream Vera licence:
 /// `tests/fonts/DejaVuSans-LICENSE.txt`).
 const GLYPH_FONT: &[u8] = include_bytes!("../../../tests/fonts/DejaVuSans.ttf");
+/// A cubic (CFF) font for the second glyph figure (EB Garamond 12, a Latin-1 subset; OFL).
+const CUBIC_FONT: &[u8] = include_bytes!("../../../tests/fonts/EBGaramond12-Regular-subset.otf");
 
 /// Render the README gallery (PNG figures and SVG panels).
 #[derive(Debug, Args)]
@@ -141,13 +143,14 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
         .map_err(Failure::new)?;
     write_png(&dir.join("intrinsic-viable.png"), &viable)?;
     write_png(&dir.join("bsplines.png"), &bsplines()?)?;
-    write_png(&dir.join("glyph-sample.png"), &glyph_figure()?)?;
+    write_png(&dir.join("glyph-sample.png"), &glyph_figure(GLYPH_FONT)?)?;
+    write_png(&dir.join("glyph-garamond.png"), &glyph_figure(CUBIC_FONT)?)?;
     Ok(ExitCode::SUCCESS)
 }
 
-/// "Sample" from the vendored font: original, κ draft, auto-shaped εκ-cubic draft.
-fn glyph_figure() -> Result<Pixmap> {
-    let font = FontOutlines::parse(GLYPH_FONT).map_err(Failure::new)?;
+/// "Sample" from a vendored font: original, κ draft, auto-shaped εκ-cubic draft.
+fn glyph_figure(data: &[u8]) -> Result<Pixmap> {
+    let font = FontOutlines::parse(data).map_err(Failure::new)?;
     let kappa = DraftOptions::for_units_per_em(font.units_per_em());
     let ek = kappa.clone().with_scheme(Scheme::EkCubic, DraftShape::Auto);
     let (width, height) = GLYPH_FIGURE_SIZE;
