@@ -621,6 +621,7 @@ fn cli_gallery() {
     expected.push("intrinsic-viable.png".to_owned());
     expected.push("bsplines.png".to_owned());
     expected.push("glyph-sample.png".to_owned());
+    expected.push("glyph-garamond.png".to_owned());
     assert_eq!(printed.len(), expected.len(), "{printed:?}");
     for file in &expected {
         let path = dir.join("sub").join(file);
@@ -639,15 +640,19 @@ fn cli_gallery() {
     assert_eq!((trig.width(), trig.height()), (7 * 300 + 6 * 8, 300));
     let drawings = kappa::render::golden::load_png(&dir.join("sub/drawings.png")).unwrap();
     assert!(drawings.width() >= 3 * 300 && drawings.height() >= 3 * 300);
-    // The glyph figure is the golden image of tests/glyph.rs.
-    let glyphs = kappa::render::golden::load_png(&dir.join("sub/glyph-sample.png")).unwrap();
-    let golden = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden/glyph-sample.png");
-    kappa::render::golden::check_golden(
-        &golden,
-        &glyphs,
-        kappa::render::golden::Tolerance::DEFAULT,
-    )
-    .unwrap();
+    // The glyph figures are the golden images of tests/glyph.rs.
+    for name in ["glyph-sample.png", "glyph-garamond.png"] {
+        let glyphs = kappa::render::golden::load_png(&dir.join("sub").join(name)).unwrap();
+        let golden = Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/golden")
+            .join(name);
+        kappa::render::golden::check_golden(
+            &golden,
+            &glyphs,
+            kappa::render::golden::Tolerance::DEFAULT,
+        )
+        .unwrap();
+    }
 }
 
 #[test]
