@@ -584,7 +584,7 @@ impl Spline<Point> {
 }
 
 /// Point, first and second derivative of a kurbo segment at `t`.
-fn path_seg_derivs(seg: &PathSeg, t: f64) -> (Point, kurbo::Vec2, kurbo::Vec2) {
+pub(crate) fn path_seg_derivs(seg: &PathSeg, t: f64) -> (Point, kurbo::Vec2, kurbo::Vec2) {
     use kurbo::ParamCurveDeriv;
     match seg {
         PathSeg::Line(l) => (l.eval(t), l.p1 - l.p0, kurbo::Vec2::ZERO),

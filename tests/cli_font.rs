@@ -164,10 +164,27 @@ fn a_truetype_font_is_drafted_and_written_whole() {
             assert!(change.errors.is_empty(), "{name}: {:?}", change.errors);
             resolved.extend(editor.to_bezpath().elements().iter().copied());
         }
+        // The written outline has the anchors as nodes: within its reported distance of
+        // the draft, which the path tool re-solves.
+        let g = glyphs.iter().find(|g| g["glyph_id"] == id).unwrap();
+        let nodes_error = g["nodes_error"].as_f64().unwrap();
+        assert!(nodes_error <= tolerance, "{name}: {nodes_error}");
         let d = hausdorff(&resolved, &path, 64);
         assert!(
-            d <= 1e-6 * 2048.0,
-            "{name}: re-solved source {d} from the drafted outline"
+            d <= nodes_error + 1e-6 * 2048.0,
+            "{name}: re-solved source {d} from the written outline ({nodes_error})"
+        );
+        // Its on-curve points are the anchors (more where one cubic does not span two).
+        let on_curve = glyph
+            .contours
+            .iter()
+            .flat_map(|c| c.points.iter())
+            .filter(|p| p.typ != norad::PointType::OffCurve)
+            .count();
+        let anchors = g["anchors"].as_u64().unwrap() as usize;
+        assert!(
+            on_curve >= anchors && on_curve <= anchors + anchors / 4,
+            "{name}: {on_curve} nodes, {anchors} anchors"
         );
     }
 }

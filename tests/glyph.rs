@@ -7,10 +7,10 @@ use std::path::{Path, PathBuf};
 
 use kappa::analysis::CurvatureAnalysis;
 use kappa::glyph::{
-    compile_font, draft, fill_mesh, from_glif, hausdorff, is_quadratic, on_curve_points,
-    on_curve_split, quantize, stroke_mesh, to_glif, to_quadratic, to_svg, word_figure, word_scene,
-    AnchorKind, DraftOptions, DraftShape, DraftedGlyph, FontGlyph, FontOutlines, Mesh, PlacedGlyph,
-    AUTO_MAX_SHAPE, FIGURE_WORD,
+    anchor_outline, compile_font, draft, fill_mesh, from_glif, hausdorff, is_quadratic,
+    on_curve_points, on_curve_split, quantize, stroke_mesh, to_glif, to_quadratic, to_svg,
+    word_figure, word_scene, AnchorKind, DraftOptions, DraftShape, DraftedGlyph, FontGlyph,
+    FontOutlines, Mesh, PlacedGlyph, AUTO_MAX_SHAPE, FIGURE_WORD,
 };
 use kappa::render::golden::{check_golden, Tolerance};
 use kappa::{Error, Scheme};
@@ -797,4 +797,85 @@ fn glyph_outer_contours_clockwise() {
         .map(|s| CurvatureAnalysis::curvature(s, 0.5))
         .sum();
     assert!(k < 0.0);
+}
+
+/// The written outline has the anchors as its nodes: every anchor is an on-curve point, one
+/// cubic spans each pair of consecutive anchors, the outline stays within the reported
+/// distance of the draft (and so within the tolerance of the original), and the tangent at
+/// each snapped extremum anchor is horizontal or vertical.
+#[test]
+fn anchor_outline_puts_nodes_at_the_anchors() {
+    let data = font_data();
+    let font = FontOutlines::parse(&data).unwrap();
+    for scheme in [Scheme::Kappa, Scheme::EkCubic, Scheme::EkTrig] {
+        let shape = if scheme == Scheme::Kappa {
+            DraftShape::Neutral
+        } else {
+            DraftShape::Auto
+        };
+        let options = options(scheme, shape);
+        for ch in "aeoSB@".chars() {
+            let glyph = font.glyph(ch).unwrap();
+            let drafted = draft(&glyph.path, &options).unwrap();
+            let nodes = anchor_outline(&drafted, 0.2, options.tolerance);
+            let on: Vec<kurbo::Point> = nodes
+                .path
+                .elements()
+                .iter()
+                .filter_map(|e| match e {
+                    kurbo::PathEl::ClosePath => None,
+                    e => e.end_point(),
+                })
+                .collect();
+            for a in drafted.pieces().flat_map(|p| p.anchors.iter()) {
+                let d = on
+                    .iter()
+                    .map(|p| (*p - a.point).hypot())
+                    .fold(f64::INFINITY, f64::min);
+                assert!(
+                    d < 1e-6,
+                    "{scheme:?} {ch}: anchor {:?} not a node ({d})",
+                    a.point
+                );
+            }
+            // (One span of the εκ-trig `@` takes two cubics.)
+            assert!(
+                nodes.split_spans <= 1,
+                "{scheme:?} {ch}: {}",
+                nodes.split_spans
+            );
+            let extra = on.len() - drafted.anchor_count();
+            assert!(
+                extra <= drafted.contours.len() + 2 * nodes.split_spans,
+                "{scheme:?} {ch}: {extra} extra nodes"
+            );
+            assert!(
+                nodes.max_error <= options.tolerance,
+                "{scheme:?} {ch}: {}",
+                nodes.max_error
+            );
+            let d = hausdorff(&nodes.path, &glyph.path, 64);
+            assert!(
+                d <= options.tolerance + 1e-6,
+                "{scheme:?} {ch}: {d} from the original"
+            );
+            assert!(nodes.snapped > 0, "{scheme:?} {ch}");
+            // Snapped tangents: at extremum anchors, cubic handles on an axis.
+            let mut axis = 0;
+            let segs: Vec<kurbo::PathSeg> = nodes.path.segments().collect();
+            for s in &segs {
+                if let kurbo::PathSeg::Cubic(c) = s {
+                    let h = c.p1 - c.p0;
+                    if h.x == 0.0 || h.y == 0.0 {
+                        axis += 1;
+                    }
+                }
+            }
+            assert!(
+                axis >= nodes.snapped,
+                "{scheme:?} {ch}: {axis} < {}",
+                nodes.snapped
+            );
+        }
+    }
 }

@@ -46,6 +46,7 @@ mod export;
 mod font;
 #[cfg(feature = "font")]
 mod import;
+mod nodes;
 #[cfg(feature = "render")]
 mod picture;
 #[cfg(feature = "font")]
@@ -68,6 +69,7 @@ pub use export::{is_quadratic, quantize, to_quadratic, to_svg, Quadratic};
 pub use font::{compile_font, FONT_FAMILY};
 #[cfg(feature = "font")]
 pub use import::{FontOutlines, Glyph};
+pub use nodes::{anchor_outline, NodeOutline};
 #[cfg(all(feature = "render", feature = "font"))]
 pub use picture::{word_figure, FIGURE_WORD};
 #[cfg(feature = "render")]

@@ -9,8 +9,8 @@ use std::time::Instant;
 use clap::Args;
 use kappa::editor::{EditPoint, PathDoc};
 use kappa::glyph::{
-    draft, drawn_glyph_ids, rebuild_ttf, rebuild_ufo, AnchorKind, DraftOptions, DraftedGlyph,
-    FontOutlines, RebuildOptions,
+    anchor_outline, draft, drawn_glyph_ids, rebuild_ttf, rebuild_ufo, AnchorKind, DraftOptions,
+    DraftedGlyph, FontOutlines, RebuildOptions,
 };
 use kappa::Scheme;
 use kurbo::BezPath;
@@ -19,6 +19,9 @@ use serde::Serialize;
 use crate::curve::SchemeName;
 use crate::failure::{self, Failure, Result};
 use crate::glyph::parse_shape;
+
+/// How closely the written outline, with the anchors as nodes, follows the draft (em).
+const NODE_ACCURACY: f64 = 1e-4;
 
 /// Draft the glyphs of a whole font and write it back as TrueType and/or UFO.
 #[derive(Debug, Args)]
@@ -38,7 +41,7 @@ use crate::glyph::parse_shape;
         use its source's Reserved Font Names.\n\n\
         Output (stdout), one JSON object on one line: {\"font\": file, \"units_per_em\": u, \
         \"scheme\": ..., \"tolerance\": t, \"glyphs\": [{\"name\", \"char\", \"glyph_id\", \
-        \"hausdorff\", \"within_tolerance\", \"anchors\", \"fallback\"}, ...], \"drafted\": n, \
+        \"hausdorff\", \"within_tolerance\", \"anchors\", \"fallback\", \"nodes_error\", \"snapped\"}, ...], \"drafted\": n, \
         \"within_tolerance\": n, \"fallback_glyphs\": n, \"seconds\": s, \"out\": [{\"file\", \
         \"format\"}]}. 'char' is null for a glyph no character maps to.\n\n\
         On any error (unreadable font, a character the font lacks, unknown extension, bad \
@@ -114,6 +117,10 @@ struct GlyphReport {
     within_tolerance: bool,
     anchors: usize,
     fallback: bool,
+    /// Largest distance of the written outline (anchors as nodes) from the draft.
+    nodes_error: f64,
+    /// Extremum anchors whose tangent was set horizontal or vertical.
+    snapped: usize,
 }
 
 #[derive(Debug, Serialize)]
@@ -201,12 +208,19 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
             within_tolerance: drafted.is_some_and(DraftedGlyph::within_tolerance),
             anchors: drafted.map_or(0, DraftedGlyph::anchor_count),
             fallback: drafted.map_or(true, |d| d.fallback_count() > 0),
+            nodes_error: 0.0,
+            snapped: 0,
         };
         match draft(&outline, &options) {
             Ok(d) => {
-                glyphs.push(report(Some(&d)));
+                let nodes = anchor_outline(&d, NODE_ACCURACY * upem, options.tolerance);
+                glyphs.push(GlyphReport {
+                    nodes_error: nodes.max_error,
+                    snapped: nodes.snapped,
+                    ..report(Some(&d))
+                });
                 sources.insert(id, kappa_source(&d, scheme)?);
-                replaced.insert(id, d.path);
+                replaced.insert(id, nodes.path);
             }
             // The glyph is kept as the source has it, flagged.
             Err(_) => glyphs.push(report(None)),
