@@ -1,15 +1,19 @@
 //! Glyph drafting benchmarks: draft and export all 52 ASCII letters of the vendored DejaVu
 //! Sans (import excluded), as κ-curves (export: TrueType quadratics, exact) and as auto-shaped
 //! εκ-cubic curves (export: quadratics within 0.5 font units); κ-curves with the fairing and
-//! with the simplification pass; and the compiled test font.
+//! with the simplification pass; and the compiled test font. A whole CFF font: every glyph
+//! of the vendored EB Garamond subset (190 drawn glyphs) drafted as κ-curves, written with
+//! the anchors as nodes and rebuilt as a TrueType font (what `kappa font` does).
 //!
 //! Run with `cargo bench --all-features --bench glyph`.
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use kappa::glyph::{
-    compile_font, draft, to_quadratic, DraftOptions, DraftShape, FontGlyph, FontOutlines,
+    anchor_outline, compile_font, draft, drawn_glyph_ids, rebuild_ttf, to_quadratic, DraftOptions,
+    DraftShape, FontGlyph, FontOutlines, RebuildOptions,
 };
 use kappa::Scheme;
+use std::collections::HashMap;
 use std::hint::black_box;
 
 fn letters() -> Vec<(char, kurbo::BezPath, f64)> {
@@ -85,5 +89,33 @@ fn glyphs(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, glyphs);
+/// Every drawn glyph of a CFF font drafted, written with its anchors as nodes, and the font
+/// rebuilt as TrueType.
+fn whole_font(c: &mut Criterion) {
+    let data = std::fs::read(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/tests/fonts/EBGaramond12-Regular-subset.otf"
+    ))
+    .unwrap();
+    let mut g = c.benchmark_group("font");
+    g.sample_size(10);
+    g.bench_function("garamond_subset_kappa_ttf", |b| {
+        b.iter(|| {
+            let font = FontOutlines::parse(&data).unwrap();
+            let options = DraftOptions::for_units_per_em(font.units_per_em());
+            let mut replaced = HashMap::new();
+            for id in drawn_glyph_ids(&data).unwrap() {
+                let outline = font.outline(id).unwrap();
+                if let Ok(d) = draft(&outline, &options) {
+                    let nodes = anchor_outline(&d, 0.1, options.tolerance);
+                    replaced.insert(id, nodes.path);
+                }
+            }
+            black_box(rebuild_ttf(&data, &replaced, &RebuildOptions::default()).unwrap())
+        })
+    });
+    g.finish();
+}
+
+criterion_group!(benches, glyphs, whole_font);
 criterion_main!(benches);

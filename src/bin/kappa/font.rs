@@ -10,7 +10,7 @@ use clap::Args;
 use kappa::editor::{EditPoint, PathDoc};
 use kappa::glyph::{
     anchor_outline, draft, drawn_glyph_ids, rebuild_ttf, rebuild_ufo, AnchorKind, DraftOptions,
-    DraftedGlyph, FontOutlines, RebuildOptions,
+    DraftedGlyph, FontOutlines, NodeOutline, RebuildOptions,
 };
 use kappa::Scheme;
 use kurbo::BezPath;
@@ -195,36 +195,39 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
     let mut replaced: HashMap<u16, BezPath> = HashMap::new();
     let mut sources: HashMap<u16, String> = HashMap::new();
     let mut glyphs = Vec::with_capacity(ids.len());
-    for &id in &ids {
+    // The drafts, on every core (each glyph on its own).
+    let drafts = map_glyphs(&ids, |id| -> Result<Option<(DraftedGlyph, NodeOutline)>> {
         let outline = font.outline(id).map_err(Failure::new)?;
-        let report = |drafted: Option<&DraftedGlyph>| GlyphReport {
+        Ok(draft(&outline, &options).ok().map(|d| {
+            let nodes = anchor_outline(&d, NODE_ACCURACY * upem, options.tolerance);
+            (d, nodes)
+        }))
+    });
+    for (&id, drafted) in ids.iter().zip(drafts) {
+        let drafted = drafted?;
+        let d = drafted.as_ref().map(|(d, _)| d);
+        let mut report = GlyphReport {
             name: names[usize::from(id)].clone(),
             ch: chars
                 .get(&id)
                 .and_then(|c| c.first())
                 .map(|c| c.to_string()),
             glyph_id: id,
-            hausdorff: drafted.and_then(|d| d.hausdorff).unwrap_or(0.0),
-            within_tolerance: drafted.is_some_and(DraftedGlyph::within_tolerance),
-            anchors: drafted.map_or(0, DraftedGlyph::anchor_count),
-            fallback: drafted.map_or(true, |d| d.fallback_count() > 0),
+            hausdorff: d.and_then(|d| d.hausdorff).unwrap_or(0.0),
+            within_tolerance: d.is_some_and(DraftedGlyph::within_tolerance),
+            anchors: d.map_or(0, DraftedGlyph::anchor_count),
+            // A glyph that could not be drafted is kept as the source has it, flagged.
+            fallback: d.map_or(true, |d| d.fallback_count() > 0),
             nodes_error: 0.0,
             snapped: 0,
         };
-        match draft(&outline, &options) {
-            Ok(d) => {
-                let nodes = anchor_outline(&d, NODE_ACCURACY * upem, options.tolerance);
-                glyphs.push(GlyphReport {
-                    nodes_error: nodes.max_error,
-                    snapped: nodes.snapped,
-                    ..report(Some(&d))
-                });
-                sources.insert(id, kappa_source(&d, scheme)?);
-                replaced.insert(id, nodes.path);
-            }
-            // The glyph is kept as the source has it, flagged.
-            Err(_) => glyphs.push(report(None)),
+        if let Some((d, nodes)) = drafted {
+            report.nodes_error = nodes.max_error;
+            report.snapped = nodes.snapped;
+            sources.insert(id, kappa_source(&d, scheme)?);
+            replaced.insert(id, nodes.path);
         }
+        glyphs.push(report);
     }
     let timestamp = std::env::var("SOURCE_DATE_EPOCH")
         .ok()
@@ -272,6 +275,19 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
     text.push('\n');
     failure::print_stdout(&text)?;
     Ok(ExitCode::SUCCESS)
+}
+
+/// `f` of every glyph id, in order: on rayon's pool with the `parallel` feature.
+fn map_glyphs<T: Send>(ids: &[u16], f: impl Fn(u16) -> T + Sync) -> Vec<T> {
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        ids.par_iter().map(|&id| f(id)).collect()
+    }
+    #[cfg(not(feature = "parallel"))]
+    {
+        ids.iter().map(|&id| f(id)).collect()
+    }
 }
 
 /// The κ source of a drafted glyph: one path-tool document ([`PathDoc`]) per contour,
