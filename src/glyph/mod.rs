@@ -12,6 +12,11 @@
 //! - feature `font`: [`FontOutlines`] reads outlines with ttf-parser; [`to_glif`] and
 //!   [`write_ufo`] write UFO sources with norad; [`compile_font`] builds a small TrueType
 //!   font with write-fonts.
+//! - feature `font`, whole fonts: [`rebuild_ttf`] writes a complete TrueType font from a
+//!   TrueType or CFF source with some outlines replaced, [`rebuild_ufo`] a UFO 3 source with
+//!   each drafted glyph's κ source in its lib ([`KAPPA_LIB_KEY`]); [`anchor_outline`] gives a
+//!   drafted glyph with its anchors as the nodes; [`orient`] turns contours the way a format
+//!   wants ([`Direction`]).
 //! - feature `tessellate`: [`fill_mesh`] and [`stroke_mesh`] through lyon.
 //!
 //! # Coordinates
@@ -60,7 +65,7 @@ pub use direction::{orient, Direction};
 pub use draft::{
     draft, draft_points, hausdorff, Anchor, AnchorKind, DraftOptions, DraftShape, DraftedContour,
     DraftedGlyph, Piece, AUTO_MAX_SHAPE, AUTO_MIN_TRIG_SHAPE, AUTO_RELATIVE_TOLERANCE,
-    AUTO_SECANT_STEPS, PEAK_MAX_RADIUS, PEAK_PROMINENCE,
+    AUTO_SECANT_STEPS, PEAK_MAX_RADIUS, PEAK_PROMINENCE, SPLIT_DEPTH,
 };
 #[cfg(feature = "font")]
 pub use export::{from_glif, to_glif, to_norad_glyph, write_ufo, FontGlyph};

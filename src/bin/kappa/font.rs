@@ -37,6 +37,10 @@ const NODE_ACCURACY: f64 = 1e-4;
         .ufo  a UFO 3 source: the drafted outlines exactly, as cubics (κ quadratics raised \
         to the cubics that trace them), outer contours counter-clockwise; each drafted glyph keeps its κ source in \
         its lib under org.kappa.contours (a JSON list of path-tool documents)\n\n\
+        The written on-curve points are the anchors: each span between two anchors is one \
+        cubic, fitted where it is not one Bézier already ('nodes_error' in the report), and \
+        the tangent at an anchor on an extremum of the original is set horizontal or \
+        vertical where that keeps the curve within the tolerance ('snapped').\n\n\
         The new font's family is --family (default \"Kappa Draft\"): a modified font may not \
         use its source's Reserved Font Names.\n\n\
         Output (stdout), one JSON object on one line: {\"font\": file, \"units_per_em\": u, \
