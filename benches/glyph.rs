@@ -107,7 +107,7 @@ fn whole_font(c: &mut Criterion) {
             for id in drawn_glyph_ids(&data).unwrap() {
                 let outline = font.outline(id).unwrap();
                 if let Ok(d) = draft(&outline, &options) {
-                    let nodes = anchor_outline(&d, 0.1, options.tolerance);
+                    let nodes = anchor_outline(&d, &outline, 0.1, options.tolerance);
                     replaced.insert(id, nodes.path);
                 }
             }

@@ -817,7 +817,7 @@ fn anchor_outline_puts_nodes_at_the_anchors() {
         for ch in "aeoSB@".chars() {
             let glyph = font.glyph(ch).unwrap();
             let drafted = draft(&glyph.path, &options).unwrap();
-            let nodes = anchor_outline(&drafted, 0.2, options.tolerance);
+            let nodes = anchor_outline(&drafted, &glyph.path, 0.2, options.tolerance);
             let on: Vec<kurbo::Point> = nodes
                 .path
                 .elements()
@@ -878,4 +878,68 @@ fn anchor_outline_puts_nodes_at_the_anchors() {
             );
         }
     }
+}
+
+/// Smooth line-to-curve joins: where a drafted curve meets a straight segment within 10°,
+/// the written outline makes it tangent to the line unless that moves the curve beyond the
+/// tolerance.
+#[test]
+fn anchor_outline_makes_line_joins_tangent() {
+    let data = font_data();
+    let font = FontOutlines::parse(&data).unwrap();
+    let options = options(Scheme::Kappa, DraftShape::Neutral);
+    let (mut tangent, mut kinked) = (0, 0);
+    for ch in ('a'..='z').chain('A'..='Z') {
+        let glyph = font.glyph(ch).unwrap();
+        let drafted = draft(&glyph.path, &options).unwrap();
+        let nodes = anchor_outline(&drafted, &glyph.path, 0.2, options.tolerance);
+        let segs: Vec<kurbo::PathSeg> = nodes.path.segments().collect();
+        for w in segs.windows(2) {
+            let (a, b) = match (w[0], w[1]) {
+                (kurbo::PathSeg::Line(l), kurbo::PathSeg::Cubic(c)) => (l.p1 - l.p0, c.p1 - c.p0),
+                (kurbo::PathSeg::Cubic(c), kurbo::PathSeg::Line(l)) => (c.p3 - c.p2, l.p1 - l.p0),
+                _ => continue,
+            };
+            let turn = a.cross(b).atan2(a.dot(b)).abs();
+            if turn < 1e-9 {
+                tangent += 1;
+            } else if turn <= 10f64.to_radians() {
+                kinked += 1;
+            }
+        }
+        // (DejaVu keeps one-point contours as anchors in some glyphs, `u` among them; the
+        // drafts leave them out.)
+        let d = hausdorff(&nodes.path, &without_points(&glyph.path), 64);
+        assert!(d <= options.tolerance + 1e-6, "{ch}: {d}");
+    }
+    // Measured: 31 made tangent, 36 left with a kink of up to 10°, where turning the handle
+    // alone would take the curve beyond the tolerance (the drafting does not solve with a
+    // tangent at its piece ends).
+    assert!(
+        tangent >= 28 && kinked <= 40,
+        "{tangent} tangent, {kinked} kinked"
+    );
+}
+
+/// The outline without its one-point contours.
+fn without_points(path: &kurbo::BezPath) -> kurbo::BezPath {
+    let mut out = kurbo::BezPath::new();
+    let mut sub: Vec<kurbo::PathEl> = Vec::new();
+    let flush = |sub: &mut Vec<kurbo::PathEl>, out: &mut kurbo::BezPath| {
+        let b = kurbo::Shape::bounding_box(&kurbo::BezPath::from_vec(sub.clone()));
+        if b.width() > 0.0 || b.height() > 0.0 {
+            out.extend(sub.iter().copied());
+        }
+        sub.clear();
+    };
+    for el in path.elements() {
+        if matches!(el, kurbo::PathEl::MoveTo(_)) && !sub.is_empty() {
+            flush(&mut sub, &mut out);
+        }
+        sub.push(*el);
+    }
+    if !sub.is_empty() {
+        flush(&mut sub, &mut out);
+    }
+    out
 }

@@ -44,12 +44,23 @@ pub struct NodeOutline {
 /// kurbo's `fit_to_bezpath` within `accuracy` where one cubic is not enough). At an anchor the
 /// drafting placed at an extremum of the original ([`AnchorKind::Extremum`]) whose tangent is
 /// within 5° of horizontal or vertical, both handles are turned onto that axis (lengths
-/// kept), as a designer would set them, unless that moves the curve further from the draft
-/// than the piece's room within `tolerance` (`tolerance` less the piece's Hausdorff distance
-/// to the original, at least `accuracy`): the written outline stays within `tolerance` of
-/// the original wherever the draft was. Pieces that kept the original's segments
-/// ([`Piece::fallback`]) are copied.
-pub fn anchor_outline(drafted: &DraftedGlyph, accuracy: f64, tolerance: f64) -> NodeOutline {
+/// kept), as a designer would set them, and a curve that meets a straight segment within 10°
+/// of tangent is made tangent to it (the drafting solves the curve between straight
+/// segments with free ends); each only where the changed curve stays within `tolerance` of
+/// `original` (the outline that was drafted), or moves from the draft by no more than the
+/// piece's room (`tolerance` less the piece's Hausdorff distance, at least `accuracy`).
+/// Pieces that kept the original's segments ([`Piece::fallback`]) are copied.
+pub fn anchor_outline(
+    drafted: &DraftedGlyph,
+    original: &BezPath,
+    accuracy: f64,
+    tolerance: f64,
+) -> NodeOutline {
+    let original: Vec<PathSeg> = original.segments().collect();
+    let budget = Budget {
+        original: &original,
+        tolerance,
+    };
     let mut out = NodeOutline {
         path: BezPath::new(),
         max_error: 0.0,
@@ -70,7 +81,8 @@ pub fn anchor_outline(drafted: &DraftedGlyph, accuracy: f64, tolerance: f64) -> 
         if curves.is_empty() {
             continue;
         }
-        snap_extrema(&mut curves, &sources, &mut out);
+        snap_extrema(&mut curves, &sources, &budget, &mut out);
+        smooth_line_joins(&mut curves, &sources, &budget, &mut out);
         out.path.move_to(curves[0].0.start());
         for (c, _) in &curves {
             match *c {
@@ -158,6 +170,7 @@ fn piece_curves(
 fn snap_extrema(
     curves: &mut [(PathSeg, bool)],
     sources: &[Option<(Span, f64)>],
+    budget: &Budget<'_>,
     out: &mut NodeOutline,
 ) {
     let n = curves.len();
@@ -190,26 +203,109 @@ fn snap_extrema(
         let node = after.p0;
         let new_after = CubicBez::new(node, node + dir * h_out.hypot(), after.p2, after.p3);
         let new_before = CubicBez::new(before.p0, before.p1, node - dir * h_in.hypot(), node);
-        // Within the room of the drafted spans the two curves came from (each curve
-        // fitted to one whole span).
-        let moved = |c: &CubicBez, k: usize| {
-            let whole = sources
-                .get(k + 1)
-                .map_or(true, |next| next.is_some() || k + 1 == n);
-            match &sources[k] {
-                Some((span, room)) if whole => {
-                    let d = span.distance(&[*c]);
-                    (d <= *room).then_some(d)
-                }
-                _ => None,
-            }
-        };
+        let moved = |c: &CubicBez, k: usize| budget.accept(c, k, sources);
         if let (Some(a), Some(b)) = (moved(&new_after, i), moved(&new_before, prev)) {
             curves[prev].0 = PathSeg::Cubic(new_before);
             curves[i].0 = PathSeg::Cubic(new_after);
             out.max_error = out.max_error.max(a).max(b);
             out.snapped += 1;
         }
+    }
+}
+
+/// The largest angle (radians) between a straight segment and the curve leaving it that is
+/// taken for a smooth join and made tangent: corners turn by more than 15° (where the
+/// drafting cuts contours).
+const SMOOTH_JOIN_ANGLE: f64 = 10.0 * core::f64::consts::PI / 180.0;
+
+/// Makes each curve that meets a straight segment at a near-smooth join (within
+/// [`SMOOTH_JOIN_ANGLE`]) leave it tangent to the line: the drafting cuts contours at straight
+/// segments and solves the curve between them with free ends, so a smooth line-to-curve
+/// join of the original comes out with a small kink. The handle at the join is turned onto
+/// the line's direction (length kept) where [`Budget::accept`] accepts the change.
+fn smooth_line_joins(
+    curves: &mut [(PathSeg, bool)],
+    sources: &[Option<(Span, f64)>],
+    budget: &Budget<'_>,
+    out: &mut NodeOutline,
+) {
+    let n = curves.len();
+    let within = |c: &CubicBez, k: usize| budget.accept(c, k, sources);
+    for i in 0..n {
+        let next = (i + 1) % n;
+        // A line, then a curve: the curve's first handle along the line.
+        if let (PathSeg::Line(l), PathSeg::Cubic(c)) = (curves[i].0, curves[next].0) {
+            let dir = l.p1 - l.p0;
+            let h = c.p1 - c.p0;
+            if let Some(len) = turn_within(dir, h) {
+                let fixed = CubicBez::new(c.p0, c.p0 + dir * (len / dir.hypot()), c.p2, c.p3);
+                if let Some(d) = within(&fixed, next) {
+                    curves[next].0 = PathSeg::Cubic(fixed);
+                    out.max_error = out.max_error.max(d);
+                }
+            }
+        }
+        // A curve, then a line: the curve's last handle along the line.
+        if let (PathSeg::Cubic(c), PathSeg::Line(l)) = (curves[i].0, curves[next].0) {
+            let dir = l.p1 - l.p0;
+            let h = c.p3 - c.p2;
+            if let Some(len) = turn_within(dir, h) {
+                let fixed = CubicBez::new(c.p0, c.p1, c.p3 - dir * (len / dir.hypot()), c.p3);
+                if let Some(d) = within(&fixed, i) {
+                    curves[i].0 = PathSeg::Cubic(fixed);
+                    out.max_error = out.max_error.max(d);
+                }
+            }
+        }
+    }
+}
+
+/// The length of handle `h` if it turns from direction `dir` by a nonzero angle of at most
+/// [`SMOOTH_JOIN_ANGLE`].
+fn turn_within(dir: Vec2, h: Vec2) -> Option<f64> {
+    let (ld, lh) = (dir.hypot(), h.hypot());
+    if ld == 0.0 || lh == 0.0 {
+        return None;
+    }
+    let angle = dir.cross(h).atan2(dir.dot(h)).abs();
+    (angle > 0.0 && angle <= SMOOTH_JOIN_ANGLE).then_some(lh)
+}
+
+/// How far a curve turned at a node may move: within its room of the drafted span (see
+/// [`anchor_outline`]), or anywhere within the tolerance of the original outline (sampled).
+struct Budget<'a> {
+    original: &'a [PathSeg],
+    tolerance: f64,
+}
+
+impl Budget<'_> {
+    /// The distance of curve `k`, changed to `c`, from its drafted span, if the change is
+    /// acceptable: `c` is fitted to one whole span, and stays within the span's room of it
+    /// or within the tolerance of the original.
+    fn accept(&self, c: &CubicBez, k: usize, sources: &[Option<(Span, f64)>]) -> Option<f64> {
+        let n = sources.len();
+        let whole = sources
+            .get(k + 1)
+            .map_or(true, |next| next.is_some() || k + 1 == n);
+        let (span, room) = sources[k].as_ref().filter(|_| whole)?;
+        let d = span.distance(&[*c]);
+        if d <= *room || self.near_original(c) {
+            Some(d)
+        } else {
+            None
+        }
+    }
+
+    /// Whether every sample of `c` is within the tolerance of the original outline.
+    fn near_original(&self, c: &CubicBez) -> bool {
+        const SAMPLES: usize = 24;
+        !self.original.is_empty()
+            && (0..=SAMPLES).all(|i| {
+                let p = c.eval(i as f64 / SAMPLES as f64);
+                self.original
+                    .iter()
+                    .any(|s| s.nearest(p, 1e-6).distance_sq <= self.tolerance * self.tolerance)
+            })
     }
 }
 

@@ -203,7 +203,7 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
     let drafts = map_glyphs(&ids, |id| -> Result<Option<(DraftedGlyph, NodeOutline)>> {
         let outline = font.outline(id).map_err(Failure::new)?;
         Ok(draft(&outline, &options).ok().map(|d| {
-            let nodes = anchor_outline(&d, NODE_ACCURACY * upem, options.tolerance);
+            let nodes = anchor_outline(&d, &outline, NODE_ACCURACY * upem, options.tolerance);
             (d, nodes)
         }))
     });
