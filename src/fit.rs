@@ -27,7 +27,7 @@ use core::ops::Range;
 
 use kurbo::{
     fit_to_bezpath, fit_to_bezpath_opt, BezPath, CubicBez, ParamCurveFit, ParamCurveNearest,
-    PathEl, Point, Vec2,
+    PathEl, PathSeg, Point, Vec2,
 };
 
 use crate::Error;
@@ -118,6 +118,25 @@ impl Fitted {
     }
 }
 
+/// The cubic that traces a segment exactly: lines and quadratics raised.
+pub(crate) fn to_cubic(seg: PathSeg) -> CubicBez {
+    match seg {
+        PathSeg::Line(l) => CubicBez::new(
+            l.p0,
+            l.p0.lerp(l.p1, 1.0 / 3.0),
+            l.p0.lerp(l.p1, 2.0 / 3.0),
+            l.p1,
+        ),
+        PathSeg::Quad(q) => q.raise(),
+        PathSeg::Cubic(c) => c,
+    }
+}
+
+/// Appends every segment of `path` to `out` as a cubic ([`to_cubic`]).
+pub(crate) fn push_cubics(path: &BezPath, out: &mut Vec<CubicBez>) {
+    out.extend(path.segments().map(to_cubic));
+}
+
 /// Whether a segment is a single point: zero derivative at both ends and the same point at
 /// its ends and middle.
 fn is_point<C: ParamCurveFit>(segment: &C) -> bool {
@@ -177,30 +196,7 @@ pub fn fit<C: ParamCurveFit>(
                 BezPath::new()
             }
         };
-        let mut last = Point::ZERO;
-        for el in piece.elements() {
-            match *el {
-                PathEl::MoveTo(p) => last = p,
-                PathEl::LineTo(p) => {
-                    pieces.push(CubicBez::new(
-                        last,
-                        last.lerp(p, 1.0 / 3.0),
-                        last.lerp(p, 2.0 / 3.0),
-                        p,
-                    ));
-                    last = p;
-                }
-                PathEl::QuadTo(p1, p2) => {
-                    pieces.push(kurbo::QuadBez::new(last, p1, p2).raise());
-                    last = p2;
-                }
-                PathEl::CurveTo(p1, p2, p3) => {
-                    pieces.push(CubicBez::new(last, p1, p2, p3));
-                    last = p3;
-                }
-                PathEl::ClosePath => {}
-            }
-        }
+        push_cubics(&piece, &mut pieces);
         if pieces.is_empty() || !pieces.iter().all(|c| c.is_finite()) {
             return Err(Error::NonFiniteCurve { segment: index });
         }

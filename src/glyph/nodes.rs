@@ -10,7 +10,7 @@ use core::ops::Range;
 
 use kurbo::{
     fit_to_bezpath, fit_to_cubic, BezPath, CubicBez, CurveFitSample, ParamCurve, ParamCurveFit,
-    ParamCurveNearest, PathEl, PathSeg, Point, Vec2,
+    ParamCurveNearest, PathSeg, Point, Vec2,
 };
 
 use super::{AnchorKind, DraftedGlyph, Piece};
@@ -394,49 +394,15 @@ impl Span {
             range,
         }] = self.parts.as_slice()
         {
-            let sub = seg.subsegment(range.clone());
-            return vec![match sub {
-                PathSeg::Line(l) => CubicBez::new(
-                    l.p0,
-                    l.p0.lerp(l.p1, 1.0 / 3.0),
-                    l.p0.lerp(l.p1, 2.0 / 3.0),
-                    l.p1,
-                ),
-                PathSeg::Quad(q) => q.raise(),
-                PathSeg::Cubic(c) => c,
-            }];
+            return vec![crate::fit::to_cubic(seg.subsegment(range.clone()))];
         }
         if let Some((c, err2)) = fit_to_cubic(self, 0.0..1.0, one) {
             if err2.sqrt() <= one {
                 return vec![c];
             }
         }
-        let path = fit_to_bezpath(self, accuracy);
         let mut out = Vec::new();
-        let mut last = Point::ZERO;
-        for el in path.elements() {
-            match *el {
-                PathEl::MoveTo(p) => last = p,
-                PathEl::LineTo(p) => {
-                    out.push(CubicBez::new(
-                        last,
-                        last.lerp(p, 1.0 / 3.0),
-                        last.lerp(p, 2.0 / 3.0),
-                        p,
-                    ));
-                    last = p;
-                }
-                PathEl::QuadTo(p1, p2) => {
-                    out.push(kurbo::QuadBez::new(last, p1, p2).raise());
-                    last = p2;
-                }
-                PathEl::CurveTo(p1, p2, p3) => {
-                    out.push(CubicBez::new(last, p1, p2, p3));
-                    last = p3;
-                }
-                PathEl::ClosePath => {}
-            }
-        }
+        crate::fit::push_cubics(&fit_to_bezpath(self, accuracy), &mut out);
         out
     }
 
