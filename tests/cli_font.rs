@@ -95,6 +95,9 @@ fn a_truetype_font_is_drafted_and_written_whole() {
         assert!(g["within_tolerance"].as_bool().unwrap(), "{g}");
         assert!(!g["fallback"].as_bool().unwrap(), "{g}");
         assert!(g["anchors"].as_u64().unwrap() >= 4, "{g}");
+        // The written outline too.
+        assert!(g["written_hausdorff"].as_f64().unwrap() <= tolerance, "{g}");
+        assert!(g["seconds"].as_f64().unwrap() >= 0.0, "{g}");
     }
 
     // The TrueType font: the same glyph set, names, character map and advances; drafted

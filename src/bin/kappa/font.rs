@@ -9,8 +9,8 @@ use std::time::Instant;
 use clap::Args;
 use kappa::editor::{EditPoint, PathDoc};
 use kappa::glyph::{
-    anchor_outline, draft, drawn_glyph_ids, rebuild_ttf, rebuild_ufo, AnchorKind, DraftOptions,
-    DraftedGlyph, FontOutlines, NodeOutline, RebuildOptions,
+    anchor_outline, draft, drawn_glyph_ids, hausdorff, rebuild_ttf, rebuild_ufo, AnchorKind,
+    DraftOptions, DraftedGlyph, FontOutlines, NodeOutline, RebuildOptions,
 };
 use kappa::Scheme;
 use kurbo::BezPath;
@@ -22,6 +22,9 @@ use crate::glyph::parse_shape;
 
 /// How closely the written outline, with the anchors as nodes, follows the draft (em).
 const NODE_ACCURACY: f64 = 1e-4;
+
+/// Samples per segment of the written outline's Hausdorff distance to the glyph.
+const HAUSDORFF_SAMPLES: usize = 32;
 
 /// Draft the glyphs of a whole font and write it back as TrueType and/or UFO.
 #[derive(Debug, Args)]
@@ -45,7 +48,7 @@ const NODE_ACCURACY: f64 = 1e-4;
         use its source's Reserved Font Names.\n\n\
         Output (stdout), one JSON object on one line: {\"font\": file, \"units_per_em\": u, \
         \"scheme\": ..., \"tolerance\": t, \"glyphs\": [{\"name\", \"char\", \"glyph_id\", \
-        \"hausdorff\", \"within_tolerance\", \"anchors\", \"fallback\", \"nodes_error\", \"snapped\"}, ...], \"drafted\": n, \
+        \"hausdorff\", \"within_tolerance\", \"anchors\", \"fallback\", \"nodes_error\", \"snapped\", \"written_hausdorff\", \"seconds\"}, ...], \"drafted\": n, \
         \"within_tolerance\": n, \"fallback_glyphs\": n, \"seconds\": s, \"out\": [{\"file\", \
         \"format\"}]}. 'char' is null for a glyph no character maps to.\n\n\
         On any error (unreadable font, a character the font lacks, unknown extension, bad \
@@ -125,6 +128,10 @@ struct GlyphReport {
     nodes_error: f64,
     /// Extremum anchors whose tangent was set horizontal or vertical.
     snapped: usize,
+    /// The Hausdorff distance of the written outline (before the TrueType grid) to the glyph.
+    written_hausdorff: f64,
+    /// The time this glyph took (draft and written outline).
+    seconds: f64,
 }
 
 #[derive(Debug, Serialize)]
@@ -200,16 +207,20 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
     let mut sources: HashMap<u16, String> = HashMap::new();
     let mut glyphs = Vec::with_capacity(ids.len());
     // The drafts, on every core (each glyph on its own).
-    let drafts = map_glyphs(&ids, |id| -> Result<Option<(DraftedGlyph, NodeOutline)>> {
+    type Drafted = (Option<(DraftedGlyph, NodeOutline, f64)>, f64);
+    let drafts = map_glyphs(&ids, |id| -> Result<Drafted> {
+        let start = Instant::now();
         let outline = font.outline(id).map_err(Failure::new)?;
-        Ok(draft(&outline, &options).ok().map(|d| {
+        let drafted = draft(&outline, &options).ok().map(|d| {
             let nodes = anchor_outline(&d, &outline, NODE_ACCURACY * upem, options.tolerance);
-            (d, nodes)
-        }))
+            let written = hausdorff(&nodes.path, &outline, HAUSDORFF_SAMPLES);
+            (d, nodes, written)
+        });
+        Ok((drafted, start.elapsed().as_secs_f64()))
     });
     for (&id, drafted) in ids.iter().zip(drafts) {
-        let drafted = drafted?;
-        let d = drafted.as_ref().map(|(d, _)| d);
+        let (drafted, seconds) = drafted?;
+        let d = drafted.as_ref().map(|(d, _, _)| d);
         let mut report = GlyphReport {
             name: names[usize::from(id)].clone(),
             ch: chars
@@ -224,10 +235,13 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
             fallback: d.map_or(true, |d| d.fallback_count() > 0),
             nodes_error: 0.0,
             snapped: 0,
+            written_hausdorff: 0.0,
+            seconds,
         };
-        if let Some((d, nodes)) = drafted {
+        if let Some((d, nodes, written)) = drafted {
             report.nodes_error = nodes.max_error;
             report.snapped = nodes.snapped;
+            report.written_hausdorff = written;
             sources.insert(id, kappa_source(&d, scheme)?);
             replaced.insert(id, nodes.path);
         }
