@@ -223,6 +223,17 @@ fn font_errors_are_one_line() {
             ],
             "shape",
         ),
+        (
+            vec![
+                "--scheme",
+                "ek-trig",
+                "--shape",
+                "0.3",
+                "--out",
+                ttf.to_str().unwrap(),
+            ],
+            "outside",
+        ),
     ] {
         let mut all = vec!["font", "--font", src.to_str().unwrap()];
         all.extend(args);

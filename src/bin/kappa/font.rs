@@ -10,7 +10,7 @@ use clap::Args;
 use kappa::editor::{EditPoint, PathDoc};
 use kappa::glyph::{
     anchor_outline, draft, drawn_glyph_ids, hausdorff, rebuild_ttf, rebuild_ufo, AnchorKind,
-    DraftOptions, DraftedGlyph, FontOutlines, NodeOutline, RebuildOptions,
+    DraftOptions, DraftShape, DraftedGlyph, FontOutlines, NodeOutline, RebuildOptions,
 };
 use kappa::Scheme;
 use kurbo::BezPath;
@@ -167,6 +167,15 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
     }
     let scheme = args.scheme.scheme();
     let shape = parse_shape(args.shape.as_deref(), scheme)?;
+    // Checked here: a shape out of range would otherwise fail every glyph's draft.
+    if let DraftShape::Global(a) = shape {
+        let (min, max) = scheme.shape_range();
+        if !(a >= min && a < max) {
+            return Err(Failure::new(format!(
+                "--shape {a} is outside [{min}, {max}) for this scheme"
+            )));
+        }
+    }
     let data = std::fs::read(&args.font)
         .map_err(|e| Failure::new(format!("cannot read {}: {e}", args.font.display())))?;
     let font =
