@@ -322,3 +322,50 @@ fn a_cff_font_becomes_truetype_and_ufo() {
         usize::from(source.glyph_count())
     );
 }
+
+/// A source without an `OS/2` table (older Mac fonts) gets one made from `hhea`, the glyph
+/// boxes and the `cmap`; the written font goes to the external validators like the others.
+#[test]
+fn a_source_without_os2_gets_one() {
+    use write_fonts::read::{FontRef, TableProvider};
+    use write_fonts::types::Tag;
+    let data = std::fs::read(dejavu()).unwrap();
+    let font = FontRef::new(&data).unwrap();
+    let mut builder = write_fonts::FontBuilder::new();
+    for record in font.table_directory.table_records() {
+        if record.tag() != Tag::new(b"OS/2") {
+            builder.add_raw(
+                record.tag(),
+                font.table_data(record.tag()).unwrap().as_bytes(),
+            );
+        }
+    }
+    let stripped = builder.build();
+    assert!(FontRef::new(&stripped).unwrap().os2().is_err());
+    let source = FontOutlines::parse(&stripped).unwrap();
+    let mut replaced = std::collections::HashMap::new();
+    let id = source.glyph_id('o').unwrap();
+    let options = kappa::glyph::DraftOptions::for_units_per_em(2048.0);
+    let drafted = kappa::glyph::draft(&source.outline(id).unwrap(), &options).unwrap();
+    replaced.insert(id, drafted.path);
+    let bytes = kappa::glyph::rebuild_ttf(
+        &stripped,
+        &replaced,
+        &kappa::glyph::RebuildOptions::default(),
+    )
+    .unwrap();
+    let out = FontRef::new(&bytes).unwrap();
+    let os2 = out.os2().unwrap();
+    assert!(os2.version() >= 4);
+    let hhea = out.hhea().unwrap();
+    assert_eq!(os2.s_typo_ascender(), hhea.ascender().to_i16());
+    let first = source
+        .char_map()
+        .values()
+        .flatten()
+        .map(|&c| c as u32)
+        .min()
+        .unwrap();
+    assert_eq!(u32::from(os2.us_first_char_index()), first);
+    std::fs::write(font_check().join("no-os2-kappa.ttf"), &bytes).unwrap();
+}

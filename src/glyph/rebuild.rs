@@ -405,10 +405,10 @@ fn maxp_of(font: &FontRef, glyphs: &[WGlyph], num_glyphs: u16) -> Result<Maxp, E
 /// `OS/2` from the source, raised to version 4 where it is older: `sxHeight` and
 /// `sCapHeight` are the tops of `x` and `H`.
 fn os2_of(font: &FontRef, outlines: &FontOutlines, boxes: &[Option<Rect>]) -> Result<Os2, Error> {
-    let mut os2: Os2 = font
-        .os2()
-        .map_err(|e| Error::Font(format!("the font has no usable OS/2 table: {e}")))?
-        .to_owned_table();
+    let mut os2: Os2 = match font.os2() {
+        Ok(os2) => os2.to_owned_table(),
+        Err(_) => synthesized_os2(font, outlines, boxes)?,
+    };
     let top = |ch: char| {
         outlines
             .glyph_id(ch)
@@ -423,6 +423,58 @@ fn os2_of(font: &FontRef, outlines: &FontOutlines, boxes: &[Option<Rect>]) -> Re
     os2.us_break_char.get_or_insert(32);
     os2.us_max_context.get_or_insert(0);
     Ok(os2)
+}
+
+/// An `OS/2` table for a source without one (older Mac fonts): the vertical metrics of
+/// `hhea` and the glyph boxes, the average advance, the character range of the `cmap`, a
+/// regular weight and width, installable embedding.
+fn synthesized_os2(
+    font: &FontRef,
+    outlines: &FontOutlines,
+    boxes: &[Option<Rect>],
+) -> Result<Os2, Error> {
+    let hhea = font.hhea().map_err(|e| Error::Font(format!("hhea: {e}")))?;
+    let upem = outlines.units_per_em();
+    let (ascender, descender) = (hhea.ascender().to_i16(), hhea.descender().to_i16());
+    let all = boxes
+        .iter()
+        .flatten()
+        .copied()
+        .reduce(|a, b| a.union(b))
+        .unwrap_or_default();
+    let advances: Vec<f64> = (0..outlines.glyph_count())
+        .map(|id| outlines.advance(id))
+        .filter(|&a| a > 0.0)
+        .collect();
+    let average = advances.iter().sum::<f64>() / advances.len().max(1) as f64;
+    let chars: Vec<u32> = outlines
+        .char_map()
+        .values()
+        .flatten()
+        .map(|&c| c as u32)
+        .collect();
+    let em = |f: f64| saturate(f * upem);
+    Ok(Os2 {
+        x_avg_char_width: saturate(average),
+        y_subscript_x_size: em(0.65),
+        y_subscript_y_size: em(0.6),
+        y_subscript_y_offset: em(0.075),
+        y_superscript_x_size: em(0.65),
+        y_superscript_y_size: em(0.6),
+        y_superscript_y_offset: em(0.35),
+        y_strikeout_size: em(0.05),
+        y_strikeout_position: em(0.26),
+        ach_vend_id: Tag::new(b"NONE"),
+        fs_selection: write_fonts::tables::os2::SelectionFlags::REGULAR,
+        us_first_char_index: chars.iter().copied().min().unwrap_or(0).min(0xFFFF) as u16,
+        us_last_char_index: chars.iter().copied().max().unwrap_or(0).min(0xFFFF) as u16,
+        s_typo_ascender: ascender,
+        s_typo_descender: descender,
+        s_typo_line_gap: hhea.line_gap().to_i16(),
+        us_win_ascent: saturate(all.y1.max(f64::from(ascender))).max(0) as u16,
+        us_win_descent: saturate((-all.y0).max(-f64::from(descender))).max(0) as u16,
+        ..Os2::default()
+    })
 }
 
 /// The family and style names of the rebuilt font: [`RebuildOptions::family`] (or
