@@ -133,6 +133,13 @@ impl DraftOptions {
     }
 }
 
+/// Refinement anchors are not placed closer than this fraction of
+/// [`DraftOptions::min_spacing`] to an existing anchor. A tenth (6 units at 1 000 units per
+/// em) lets the refinement reach small fillets, rounded tips and bracketed serifs: on the
+/// alphabet of EB Garamond 12, 56 of 65 glyphs come within 0.004 em against 37 with a
+/// quarter, for 1.5 % more anchors; DejaVu Sans' alphabet is unchanged.
+const REFINE_GAP: f64 = 0.1;
+
 /// Why an anchor was placed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum AnchorKind {
@@ -1080,7 +1087,7 @@ impl Drafter<'_> {
     /// its first anchor), the original sample furthest from the draft if further than the
     /// tolerance: its distance and position. One pass over `k` samples per segment, midway
     /// between the measurement samples of [`Target::deviation`] (which would sit on anchors
-    /// at joints), skipping samples closer than a quarter of the minimum spacing to the
+    /// at joints), skipping samples closer than [`REFINE_GAP`] of the minimum spacing to the
     /// span's ends.
     fn worst_per_span(
         &self,
@@ -1093,7 +1100,7 @@ impl Drafter<'_> {
         let m = anchors.len();
         let spans = if closed { m } else { m - 1 };
         let points: Vec<Point> = anchors.iter().map(|c| eval_at(segs, c.s)).collect();
-        let gap = 0.25 * self.options.min_spacing;
+        let gap = REFINE_GAP * self.options.min_spacing;
         let mut worst: Vec<Option<(f64, f64)>> = vec![None; spans];
         let mut span = 0;
         for (i, seg) in segs.iter().enumerate() {
