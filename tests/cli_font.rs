@@ -82,6 +82,9 @@ fn a_truetype_font_is_drafted_and_written_whole() {
     let source = FontOutlines::parse(&source_bytes).unwrap();
     let tolerance = report["tolerance"].as_f64().unwrap();
     assert!((tolerance - 0.004 * 2048.0).abs() < 1e-9);
+    // A TrueType font is written: the drafts leave room for its quadratics and grid.
+    let draft_tolerance = report["draft_tolerance"].as_f64().unwrap();
+    assert!((draft_tolerance - (tolerance - 0.5 - 0.5 * 2f64.sqrt())).abs() < 1e-9);
     // é is a composite in DejaVu Sans: its components (e and the accent) are drafted
     // instead, and it stays a composite.
     let glyphs = report["glyphs"].as_array().unwrap();

@@ -47,10 +47,14 @@ const HAUSDORFF_SAMPLES: usize = 32;
         The new font's family is --family (default \"Kappa Draft\"): a modified font may not \
         use its source's Reserved Font Names.\n\n\
         Output (stdout), one JSON object on one line: {\"font\": file, \"units_per_em\": u, \
-        \"scheme\": ..., \"tolerance\": t, \"glyphs\": [{\"name\", \"char\", \"glyph_id\", \
+        \"scheme\": ..., \"tolerance\": t, \"draft_tolerance\": d, \"glyphs\": [{\"name\", \"char\", \"glyph_id\", \
         \"hausdorff\", \"within_tolerance\", \"anchors\", \"fallback\", \"nodes_error\", \"snapped\", \"written_hausdorff\", \"seconds\"}, ...], \"drafted\": n, \
         \"within_tolerance\": n, \"fallback_glyphs\": n, \"seconds\": s, \"out\": [{\"file\", \
-        \"format\"}]}. 'char' is null for a glyph no character maps to.\n\n\
+        \"format\"}]}. 'char' is null for a glyph no character maps to. The drafts are held to \
+        'draft_tolerance': --tolerance, less --quad-tolerance and half a grid diagonal when a \
+        .ttf is written (its quadratics and integer grid must stay within --tolerance too; \
+        at most half of it); 'within_tolerance' and 'hausdorff' are the draft's, \
+        'written_hausdorff' that of the written outline before the grid.\n\n\
         On any error (unreadable font, a character the font lacks, unknown extension, bad \
         option) the exit code is 2, stderr holds one 'kappa: error:' line and stdout stays \
         empty.",
@@ -146,6 +150,7 @@ struct Report {
     units_per_em: f64,
     scheme: SchemeName,
     tolerance: f64,
+    draft_tolerance: f64,
     glyphs: Vec<GlyphReport>,
     drafted: usize,
     within_tolerance: usize,
@@ -187,6 +192,13 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
             return Err(Failure::new("--tolerance must be a positive number"));
         }
         options.tolerance = t;
+    }
+    // The written fonts are held to the tolerance: a TrueType font also converts cubics to
+    // quadratics and rounds every point to the grid, so its drafts leave room for both.
+    let tolerance = options.tolerance;
+    if formats.contains(&Format::Ttf) {
+        let headroom = args.quad_tolerance + 0.5 * core::f64::consts::SQRT_2;
+        options.tolerance = (tolerance - headroom).max(0.5 * tolerance);
     }
     let chars = font.char_map();
     let drawn = drawn_glyph_ids(&data).map_err(|e| Failure::new(e).context(args.font.display()))?;
@@ -289,7 +301,8 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
         font: args.font.display().to_string(),
         units_per_em: upem,
         scheme: args.scheme,
-        tolerance: options.tolerance,
+        tolerance,
+        draft_tolerance: options.tolerance,
         drafted: glyphs.len(),
         within_tolerance: glyphs.iter().filter(|g| g.within_tolerance).count(),
         fallback_glyphs: glyphs.iter().filter(|g| g.fallback).count(),
