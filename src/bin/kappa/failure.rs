@@ -111,6 +111,13 @@ pub fn read_stdin() -> Result<String> {
     Ok(text)
 }
 
+/// The extension of a file name, in lower case (`None` without one).
+pub fn extension(path: &Path) -> Option<String> {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase)
+}
+
 /// Writes `bytes` to the file at `path`, replacing it.
 pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
     std::fs::write(path, bytes)

@@ -103,11 +103,7 @@ enum Format {
 
 impl Format {
     fn of(path: &Path) -> Result<Format> {
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        match ext.as_deref() {
+        match failure::extension(path).as_deref() {
             Some("ttf") => Ok(Format::Ttf),
             Some("ufo") => Ok(Format::Ufo),
             _ => Err(Failure::new(format!(

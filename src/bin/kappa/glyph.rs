@@ -128,11 +128,7 @@ enum Format {
 impl Format {
     /// The format of a file name, from its extension (case-insensitive).
     fn of(path: &Path) -> Result<Format> {
-        let ext = path
-            .extension()
-            .and_then(|e| e.to_str())
-            .map(str::to_ascii_lowercase);
-        match ext.as_deref() {
+        match failure::extension(path).as_deref() {
             Some("svg") => Ok(Format::Svg),
             Some("png") => Ok(Format::Png),
             Some("glif") => Ok(Format::Glif),
