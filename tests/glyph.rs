@@ -871,6 +871,19 @@ fn anchor_outline_puts_nodes_at_the_anchors() {
                     }
                 }
             }
+            // G1 at every node between two cubics whose outgoing handle is on an axis: the
+            // incoming handle is on the same line.
+            for w in segs.windows(2) {
+                if let (kurbo::PathSeg::Cubic(a), kurbo::PathSeg::Cubic(b)) = (w[0], w[1]) {
+                    let (h_in, h_out) = (a.p3 - a.p2, b.p1 - b.p0);
+                    if (h_out.x == 0.0) != (h_out.y == 0.0) && h_in.hypot() > 0.0 {
+                        assert!(
+                            h_in.cross(h_out).abs() <= 1e-9 * h_in.hypot() * h_out.hypot(),
+                            "{scheme:?} {ch}: handles {h_in:?} {h_out:?} not on one line"
+                        );
+                    }
+                }
+            }
             assert!(
                 axis >= nodes.snapped,
                 "{scheme:?} {ch}: {axis} < {}",

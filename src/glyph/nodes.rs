@@ -50,6 +50,14 @@ pub struct NodeOutline {
 /// `original` (the outline that was drafted), or moves from the draft by no more than the
 /// piece's room (`tolerance` less the piece's Hausdorff distance, at least `accuracy`).
 /// Pieces that kept the original's segments ([`Piece::fallback`]) are copied.
+///
+/// **What holds at a node whose tangent was set.** The curve still passes through the
+/// anchor (the node is the anchor) and is G1 there (both handles on one line, checked in
+/// `tests/glyph.rs`), but the change comes after the solve: the two sides' |κ| at the node
+/// no longer agree (no G2), and the anchor is no longer exactly the curvature peak of its
+/// span. Elsewhere the written curve is the draft within `max_error`. (Constraining the
+/// tangent inside the solve, which would keep G2 by giving up the peak condition, is not
+/// built.)
 pub fn anchor_outline(
     drafted: &DraftedGlyph,
     original: &BezPath,
