@@ -863,8 +863,9 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
     ) -> Result<Spline<P>, Error> {
         self.warm = false;
         self.setup(points, closed, scheme, Some(shape))?;
+        // (Open input of two points has no unknowns: nothing to start from.)
         let n = self.prob.p.len();
-        if start.controls.len() == n * D {
+        if n > 0 && start.controls.len() == n * D {
             let c: Vec<[f64; D]> = start
                 .controls
                 .chunks_exact(D)

@@ -886,6 +886,13 @@ proptest! {
 #[test]
 fn straight_and_failed_solves_have_no_state() {
     let mut solver = Solver::new();
+    // An empty state given for a curve without unknowns (two points) is no start at all.
+    let two = [(0.0, 0.0), (1.0, 1.0)].map(Point::from);
+    let empty = kappa::SolvedState::default();
+    let s = solver
+        .solve_from(&two, false, Scheme::Kappa, &Shape::Neutral, &empty)
+        .unwrap();
+    assert!(s.converged() && s.segments().len() == 1);
     assert!(solver.state().is_none());
     let line = [(0.0, 0.0), (1.0, 1.0), (3.0, 3.0)].map(Point::from);
     solver
