@@ -259,7 +259,9 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
             report.nodes_error = nodes.max_error;
             report.snapped = nodes.snapped;
             report.written_hausdorff = written;
-            sources.insert(id, kappa_source(&d, scheme)?);
+            if formats.contains(&Format::Ufo) {
+                sources.insert(id, kappa_source(&d, scheme)?);
+            }
             replaced.insert(id, nodes.path);
         }
         glyphs.push(report);
