@@ -62,6 +62,26 @@ pub enum Error {
         /// The number of shape parameters given.
         got: usize,
     },
+    /// A tangent list whose length does not match the number of points, or a tangent
+    /// that is zero or not finite.
+    #[error("tangent {index}: {reason}")]
+    InvalidTangent {
+        /// Index of the point (the list's length when the count is wrong).
+        index: usize,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// Two tangents fall on one segment: the first (last) point of an open curve and the
+    /// point after (before) it, or both ends of an open curve of three points. A segment's
+    /// peak condition makes room for one tangent only (see
+    /// [`Solver::solve_with_tangents`](crate::Solver::solve_with_tangents)).
+    #[error("tangents at points {first} and {second} fall on one segment; drop one or add a point between them")]
+    TangentConflict {
+        /// The first point.
+        first: usize,
+        /// The second point.
+        second: usize,
+    },
     /// The `γ` of a κ-space curve's joint lies outside the open interval where its quartic
     /// exists (`(λ t1, λ + (1 − λ) t2)`, seed 004 eqs. 17, 18), or is not finite.
     #[error("gamma of joint {joint} is {value}, outside ({min}, {max})")]

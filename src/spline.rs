@@ -4,7 +4,7 @@ use kurbo::{BezPath, CubicBez, ParamCurve, PathSeg, Point, QuadBez};
 
 use crate::basis::{classify, Basis, CubicEk, Extremum, TrigEk};
 use crate::fit::{FitOptions, Fitted};
-use crate::solver::{Edit, Outcome, Problem, Settings, Workspace};
+use crate::solver::{Edit, Outcome, Problem, Settings, Tangent, TangentAt, Workspace};
 use crate::trig::TrigBez;
 use crate::{Error, Point3, SolvedState};
 
@@ -280,6 +280,20 @@ impl Segment<Point> {
             return self.to_trig().eval(t);
         }
         self.to_path_seg().eval(t)
+    }
+
+    /// The derivative `dP/dt` at `t` (its direction is the tangent's), exact for every
+    /// scheme.
+    pub fn derivative(&self, t: f64) -> kurbo::Vec2 {
+        use kurbo::ParamCurveDeriv;
+        if self.scheme == Scheme::EkTrig {
+            return self.to_trig().derivative(t);
+        }
+        match self.to_path_seg() {
+            PathSeg::Line(l) => l.deriv().eval(t).to_vec2(),
+            PathSeg::Quad(q) => q.deriv().eval(t).to_vec2(),
+            PathSeg::Cubic(c) => c.deriv().eval(t).to_vec2(),
+        }
     }
 
     /// The signed curvature at `t` (positive for left turns), exact for every scheme.
@@ -772,6 +786,8 @@ pub struct SolverN<P, const D: usize, const B: usize> {
     /// The input points in the normalized frame (all of them; `prob` keeps those with a
     /// segment).
     local: Vec<[f64; D]>,
+    /// Prescribed tangent directions by input point (empty: none), as given.
+    tangents: Vec<Option<[f64; D]>>,
     _marker: core::marker::PhantomData<P>,
 }
 
@@ -779,6 +795,77 @@ pub struct SolverN<P, const D: usize, const B: usize> {
 pub type Solver = SolverN<Point, 2, 4>;
 /// The 3D solver.
 pub type Solver3 = SolverN<Point3, 3, 5>;
+
+impl Solver {
+    /// Solve with a prescribed tangent direction at some of the points (`None`: free), one
+    /// entry per point; the curve leaves each such point along its direction (the sign
+    /// counts).
+    ///
+    /// A tangent takes the place of one condition per segment, which keeps the system
+    /// square (derivation in the `solver` module's [`Tangent`] notes):
+    /// - at an interior point (every point of a closed curve), the point is still
+    ///   interpolated and the curve is G2 at every joint, but the point is no longer a
+    ///   curvature extremum: the peak condition of its segment gives way to the tangent;
+    /// - at the first (last) point of an open curve, the tangent is that of the first
+    ///   (last) segment's start (end), whose peak condition gives way: the second (second to
+    ///   last) point is then interpolated but not a curvature extremum. A smooth join of a
+    ///   line and a curve is this case, with the line's direction: the join is G1, not G2
+    ///   (the curve's curvature there is not zero).
+    ///
+    /// Such a curve exists only for directions near the free curve's: the constrained point
+    /// must stay inside its segment. Measured on a four-point loop, a tangent turned by up
+    /// to 10° from the free curve's converges in every scheme (κ up to 15°, none at 30°); a
+    /// direction farther off needs more points around it. The solve follows the free
+    /// curve: it turns the directions from the free curve's to the prescribed ones
+    /// (continuation), so small changes of direction give small changes of the curve.
+    ///
+    /// Two tangents on one segment (an end of an open curve and its neighbour, or both ends
+    /// of a three-point open curve) are a [`Error::TangentConflict`]; a two-point open curve
+    /// takes no tangent either. [`resolve`](Self::resolve) and
+    /// [`resolve_shapes`](Self::resolve_shapes) keep the tangents; [`solve`](Self::solve)
+    /// drops them.
+    ///
+    /// ```
+    /// use kappa::{Scheme, Shape, Solver};
+    /// use kurbo::{Point, Vec2};
+    ///
+    /// // An oval whose top and bottom nodes keep horizontal tangents.
+    /// let points = [(0.0, 0.0), (60.0, 30.0), (0.0, 70.0), (-50.0, 35.0)].map(Point::from);
+    /// let tangents = [Some(Vec2::new(1.0, 0.0)), None, Some(Vec2::new(-1.0, 0.0)), None];
+    /// let mut solver = Solver::new();
+    /// let spline = solver
+    ///     .solve_with_tangents(&points, true, Scheme::Kappa, &Shape::Neutral, &tangents)?;
+    /// for (seg, tan) in spline.segments().iter().zip(tangents) {
+    ///     if let Some(tan) = tan {
+    ///         let d = seg.derivative(seg.t_max);
+    ///         assert!(d.cross(tan).abs() <= 1e-9 * d.hypot() && d.dot(tan) > 0.0);
+    ///     }
+    /// }
+    /// # Ok::<(), kappa::Error>(())
+    /// ```
+    pub fn solve_with_tangents(
+        &mut self,
+        points: &[Point],
+        closed: bool,
+        scheme: Scheme,
+        shape: &Shape,
+        tangents: &[Option<kurbo::Vec2>],
+    ) -> Result<Spline<Point>, Error> {
+        self.tangents.clear();
+        self.tangents
+            .extend(tangents.iter().map(|t| t.map(|v| [v.x, v.y])));
+        // A list of the wrong length is reported before anything else is checked.
+        if self.tangents.len() != points.len() {
+            let index = self.tangents.len();
+            self.tangents.clear();
+            return Err(Error::InvalidTangent {
+                index,
+                reason: "expected one entry per point",
+            });
+        }
+        self.solve_again(points, closed, scheme, shape)
+    }
+}
 
 impl<P: Coords<D>, const D: usize, const B: usize> Default for SolverN<P, D, B> {
     fn default() -> Self {
@@ -802,12 +889,14 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                 p: Vec::new(),
                 ghost: [[0.0; D]; 2],
                 basis: Vec::new(),
+                tangents: Vec::new(),
             },
             scratch: Problem {
                 closed: true,
                 p: Vec::new(),
                 ghost: [[0.0; D]; 2],
                 basis: Vec::new(),
+                tangents: Vec::new(),
             },
             frame: Frame {
                 center: [0.0; D],
@@ -817,6 +906,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             points: Vec::new(),
             warm: false,
             local: Vec::new(),
+            tangents: Vec::new(),
             _marker: core::marker::PhantomData,
         }
     }
@@ -836,6 +926,18 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
 
     /// Solve from scratch.
     pub fn solve(
+        &mut self,
+        points: &[P],
+        closed: bool,
+        scheme: Scheme,
+        shape: &Shape,
+    ) -> Result<Spline<P>, Error> {
+        self.tangents.clear();
+        self.solve_again(points, closed, scheme, shape)
+    }
+
+    /// [`solve`](Self::solve) with the tangents of the last solve kept.
+    fn solve_again(
         &mut self,
         points: &[P],
         closed: bool,
@@ -923,7 +1025,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                     }
                 }
             };
-            return self.solve(points, closed, self.scheme, &shapes);
+            return self.solve_again(points, closed, self.scheme, &shapes);
         }
         self.ws.refresh_jacobian(&self.prob, self.options.tolerance);
         let old_frame = self.frame;
@@ -983,7 +1085,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
     pub fn resolve_shapes(&mut self, scheme: Scheme, shape: &Shape) -> Result<Spline<P>, Error> {
         if !self.warm {
             let points: Vec<P> = self.points.iter().map(|&c| P::from_coords(c)).collect();
-            return self.solve(&points, self.prob.closed, scheme, shape);
+            return self.solve_again(&points, self.prob.closed, scheme, shape);
         }
         check_shapes(scheme, shape, self.points.len())?;
         self.set_shapes(scheme, shape);
@@ -1091,6 +1193,61 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         if let Some(shape) = shape {
             self.set_shapes(scheme, shape);
         }
+        self.set_tangents()
+    }
+
+    /// The blocks' tangent constraints from [`tangents`](Self::tangents) (see
+    /// [`Solver::solve_with_tangents`]).
+    fn set_tangents(&mut self) -> Result<(), Error> {
+        self.prob.tangents.clear();
+        if self.tangents.is_empty() {
+            return Ok(());
+        }
+        let m = self.points.len();
+        if self.tangents.len() != m {
+            return Err(Error::InvalidTangent {
+                index: self.tangents.len(),
+                reason: "expected one entry per point",
+            });
+        }
+        let closed = self.prob.closed;
+        let n = self.prob.p.len();
+        self.prob.tangents.resize(n, None);
+        let mut owner = vec![0; n];
+        for (i, tan) in self.tangents.iter().enumerate() {
+            let Some(v) = tan else { continue };
+            let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+            if !(norm > 0.0 && norm.is_finite()) {
+                return Err(Error::InvalidTangent {
+                    index: i,
+                    reason: "a tangent must be a nonzero, finite vector",
+                });
+            }
+            let dir = core::array::from_fn(|k| v[k] / norm);
+            let (block, at) = if closed {
+                (i, TangentAt::Peak)
+            } else if n == 0 {
+                // Two points: one straight segment, nothing to bend.
+                return Err(Error::TangentConflict {
+                    first: 0,
+                    second: 1,
+                });
+            } else if i == 0 {
+                (0, TangentAt::Start)
+            } else if i + 1 == m {
+                (n - 1, TangentAt::End)
+            } else {
+                (i - 1, TangentAt::Peak)
+            };
+            if self.prob.tangents[block].is_some() {
+                return Err(Error::TangentConflict {
+                    first: owner[block],
+                    second: i,
+                });
+            }
+            owner[block] = i;
+            self.prob.tangents[block] = Some(Tangent { dir, at });
+        }
         Ok(())
     }
 
@@ -1133,7 +1290,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         // All input points on one line (the ends may coincide, as in a loop that starts
         // where it ends, so they are checked together with the interior points; `local`
         // holds all of them, the ends included).
-        if !closed && collinear(&self.local) {
+        if !closed && self.prob.tangents.is_empty() && collinear(&self.local) {
             if !monotone_along_line(&self.local) {
                 // A curve through points that double back along one line would need a
                 // cusp at every reversal: there is no κ- or εκ-curve through them.
@@ -1150,7 +1307,8 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         let settings = Settings {
             tolerance: self.options.tolerance,
             max_iterations: self.options.max_iterations,
-            newton_chords: true,
+            // (Tangent rows are not frozen for chord steps.)
+            newton_chords: self.prob.tangents.is_empty(),
         };
         let outcome = if self.warm {
             // A warm start that does not converge quickly is far from the new solution: a
@@ -1167,12 +1325,12 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
                     max_iterations: settings.max_iterations.saturating_sub(warm.iterations),
                     ..settings
                 };
-                let mut cold = self.ws.solve_cold(&self.prob, &rest, &mut self.scratch);
+                let mut cold = self.cold(&rest);
                 cold.iterations += warm.iterations;
                 cold
             }
         } else {
-            self.ws.solve_cold(&self.prob, &settings, &mut self.scratch)
+            self.cold(&settings)
         };
         self.warm = outcome.converged;
         if !outcome.converged && !self.options.accept_unconverged {
@@ -1182,6 +1340,17 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             });
         }
         Ok(self.spline(outcome.into()))
+    }
+
+    /// The cold solve: the cascade of [`Workspace::solve_cold`], or with tangents
+    /// [`Workspace::solve_cold_tangents`].
+    fn cold(&mut self, settings: &Settings) -> Outcome {
+        if self.prob.tangents.is_empty() {
+            self.ws.solve_cold(&self.prob, settings, &mut self.scratch)
+        } else {
+            self.ws
+                .solve_cold_tangents(&self.prob, settings, &mut self.scratch)
+        }
     }
 
     /// The solution for open input on one line: straight segments with `c_j = p_j`, joints

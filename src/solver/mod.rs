@@ -32,7 +32,11 @@ use crate::basis::{Basis, SegmentBasis, Stationarity};
 use crate::linalg::{solve_tridiagonal, BandLu, BorderedLu, DenseLu, SplitLu, TriScratch};
 use crate::parallel::join;
 
+mod tangent;
 mod window;
+
+use tangent::TangentRow;
+pub(crate) use tangent::{Tangent, TangentAt};
 pub(crate) use window::Edit;
 
 /// Regularization of the squared doubled triangle area, in normalized coordinates (drawing
@@ -276,6 +280,8 @@ pub(crate) struct Problem<const D: usize> {
     pub ghost: [[f64; D]; 2],
     /// The segment basis of each block.
     pub basis: Vec<Basis>,
+    /// A prescribed tangent per block (empty: none anywhere; see [`Tangent`]).
+    pub tangents: Vec<Option<Tangent<D>>>,
 }
 
 /// The unknowns.
@@ -870,7 +876,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         // Whether the residual buffers still hold the measure of the state (a window
         // re-solve's, which only this re-solve's own window steps can renew).
         let measured = core::mem::take(&mut self.window.measured);
-        if let Some(edit) = self.edit.take() {
+        // (Tangent rows are not frozen: no window and no chord steps with them.)
+        let plain = prob.tangents.is_empty();
+        if let Some(edit) = self.edit.take().filter(|_| plain) {
             if let Some(local) = self.solve_window(prob, set, edit, measured) {
                 if local.converged {
                     return local;
@@ -887,7 +895,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 LinState::Empty
             };
         }
-        if self.lin_state == LinState::Factored
+        if plain
+            && self.lin_state == LinState::Factored
             && self.fact_scale.len() == n
             && self.res.len() == n
             && self.chord_steps(prob, set, CHORD_CONTRACTION, None, false, &mut out)
@@ -1324,6 +1333,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let mut out = Outcome::default();
         scratch.closed = prob.closed;
         scratch.ghost = prob.ghost;
+        scratch.tangents.clone_from(&prob.tangents);
         scratch.p.clone_from(&prob.p);
         // Only the shapes move along the homotopy.
         let blend = |scratch: &mut Problem<D>, s: f64| {
@@ -1833,7 +1843,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             };
             jl[row][o][k] += v;
         };
-        let r = Self::eval_block::<true, false>(prob, j, loc, scale, g2, &mut sink);
+        let mut r = Self::eval_block::<true, false>(prob, j, loc, scale, g2, &mut sink);
+        if !prob.tangents.is_empty() {
+            tangent::end_row_last(prob, j, &mut r, &mut jl);
+        }
         (r, jl)
     }
 
@@ -1895,13 +1908,21 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         for k in 0..D {
             res[k] = l.c0[k] - w0 * r[k] + w2 * s[k] - prob.p[j][k];
         }
+        // A prescribed tangent takes the place of the peak condition (see `Tangent`).
+        let tangent = if prob.tangents.is_empty() {
+            None
+        } else {
+            prob.tangents[j].map(|tan| TangentRow::new(tan, &basis, l.t, r, s))
+        };
         // Curvature peak.
         let st = Stationarity::new(&w);
         let (rr, rs, ss) = (dot(r, r), dot(r, s), dot(s, s));
         let rt = st.c[0] * rr + st.c[1] * rs + st.c[2] * ss;
         raw[1] = rt;
         let mag = st.c[0].abs() * rr + st.c[1].abs() * rs.abs() + st.c[2].abs() * ss;
-        let sc_t = if FROZEN {
+        let sc_t = if tangent.is_some() {
+            1.0
+        } else if FROZEN {
             scale[1]
         } else {
             -1.0 / (mag + 1e-300)
@@ -1909,8 +1930,15 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         // Peak condition as a box complementarity (semi-smooth Newton): with `g` the scaled
         // stationarity residual (increasing in t through a maximum), `t - clamp(t - g, 0, 1)`
         // is `g` inside, `t` when the peak is forced to the start, `t - 1` at the end.
-        let g = rt * sc_t;
-        let (peak, peak_end) = peak_row(l.t, g);
+        // A tangent row has no complementarity: a tangent met by pinning `t_j` at a
+        // segment end would not be met at the point.
+        let (peak, peak_end) = match &tangent {
+            Some(tr) => {
+                raw[1] = tr.value;
+                (tr.value, None)
+            }
+            None => peak_row(l.t, rt * sc_t),
+        };
         res[D + 1] = peak;
         scale[1] = sc_t;
         // G2 joint (trivial for the last block of an open curve: λ_{n-1} = 1).
@@ -1954,6 +1982,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             let sc = sc_t;
             if let Some(_end) = peak_end {
                 sink(D + 1, Var::T, 1.0);
+            } else if let Some(tr) = &tangent {
+                tr.jacobian(l, em, e0, om, &mut |var, v| sink(D + 1, var, v));
             } else {
                 let gr: [f64; D] = core::array::from_fn(|k| 2.0 * st.c[0] * r[k] + st.c[1] * s[k]);
                 let gs: [f64; D] = core::array::from_fn(|k| st.c[1] * r[k] + 2.0 * st.c[2] * s[k]);
@@ -2644,6 +2674,7 @@ mod tests {
             p: vec![[0.0; 2]; n],
             ghost: [[0.0; 2]; 2],
             basis: vec![Basis::QUADRATIC; n],
+            tangents: Vec::new(),
         };
         let star = State {
             c: vec![[0.3, -0.2], [1.0, 0.5], [-0.4, 0.9]],
@@ -2780,7 +2811,11 @@ mod jacobian_tests {
         out
     }
 
-    fn check<const D: usize, const B: usize>(closed: bool, a: f64) {
+    fn check<const D: usize, const B: usize>(
+        closed: bool,
+        a: f64,
+        tangents: Vec<Option<Tangent<D>>>,
+    ) {
         let n = 6;
         let mut seed = 5u64;
         let mut rnd = || {
@@ -2804,6 +2839,7 @@ mod jacobian_tests {
             p: p.clone(),
             ghost: [[0.5; D], [-0.5; D]],
             basis: vec![Basis::Cubic(crate::basis::CubicEk::new(a)); n],
+            tangents,
         };
         let st = State {
             c: p.iter()
@@ -2872,9 +2908,40 @@ mod jacobian_tests {
     fn jacobian_matches_finite_differences() {
         for &closed in &[true, false] {
             for &a in &[2.0 / 3.0, 0.8] {
-                check::<2, 4>(closed, a);
-                check::<3, 5>(closed, a);
+                check::<2, 4>(closed, a, Vec::new());
+                check::<3, 5>(closed, a, Vec::new());
             }
+        }
+    }
+
+    #[test]
+    fn tangent_rows_match_finite_differences() {
+        let tan = |x: f64, y: f64, at| {
+            let n = x.hypot(y);
+            Some(Tangent {
+                dir: [x / n, y / n],
+                at,
+            })
+        };
+        for &a in &[2.0 / 3.0, 0.8] {
+            let peak = vec![
+                tan(1.0, 0.2, TangentAt::Peak),
+                None,
+                tan(-0.3, 1.0, TangentAt::Peak),
+                None,
+                None,
+                tan(0.5, -1.0, TangentAt::Peak),
+            ];
+            check::<2, 4>(true, a, peak);
+            let ends = vec![
+                tan(1.0, 0.0, TangentAt::Start),
+                None,
+                tan(0.0, 1.0, TangentAt::Peak),
+                None,
+                None,
+                tan(1.0, -1.0, TangentAt::End),
+            ];
+            check::<2, 4>(false, a, ends);
         }
     }
 }
@@ -2887,6 +2954,14 @@ mod linear_tests {
     /// The Newton system assembled into the banded/bordered solver gives the same step as a
     /// dense LU of the same entries.
     fn check<const D: usize, const B: usize>(closed: bool, n: usize) {
+        check_with::<D, B>(closed, n, Vec::new());
+    }
+
+    fn check_with<const D: usize, const B: usize>(
+        closed: bool,
+        n: usize,
+        tangents: Vec<Option<Tangent<D>>>,
+    ) {
         let p: Vec<[f64; D]> = (0..n)
             .map(|i| {
                 let th = i as f64 / n as f64 * std::f64::consts::TAU;
@@ -2902,6 +2977,7 @@ mod linear_tests {
             p: p.clone(),
             ghost: [[1.5; D], [-1.5; D]],
             basis: vec![Basis::Cubic(crate::basis::CubicEk::new(0.7)); n],
+            tangents,
         };
         let mut ws = Workspace::<D, B>::default();
         ws.cold_start(&prob);
@@ -2911,8 +2987,11 @@ mod linear_tests {
         ws.assemble(&prob, 1e-12);
         // The full Newton system, dense.
         let nn = n * B;
+        // (The rows as `eval_block` has them: `assemble` may order a block's rows otherwise,
+        // which leaves the step as it is.)
         let mut dense = DenseLu::default();
         dense.reset(nn);
+        let mut full = Vec::with_capacity(nn);
         for j in 0..n {
             let loc = Workspace::<D, B>::local(&prob, &ws.state, j);
             let mut scale = [1.0; 2];
@@ -2921,11 +3000,11 @@ mod linear_tests {
                     dense.add(j * B + row, c, v);
                 }
             };
-            Workspace::<D, B>::eval_block::<true, false>(
+            let r = Workspace::<D, B>::eval_block::<true, false>(
                 &prob, j, &loc, &mut scale, &mut 0.0, &mut sink,
             );
+            full.extend(r.iter().map(|v| -v));
         }
-        let mut full: Vec<f64> = ws.res.iter().flat_map(|r| r.iter().map(|v| -v)).collect();
         assert!(dense.factor());
         dense.solve(&mut full);
         // The condensed system through the banded / bordered / small dense solver.
@@ -2936,6 +3015,27 @@ mod linear_tests {
                 (a - b).abs() <= 1e-8 * (1.0 + b.abs()),
                 "closed={closed} n={n}: {a} vs {b}"
             );
+        }
+    }
+
+    #[test]
+    fn condensed_step_with_tangents() {
+        for (closed, n) in [(true, 7), (false, 7), (true, 40), (false, 40)] {
+            let mut tangents = vec![None; n];
+            let at = |end| if closed { TangentAt::Peak } else { end };
+            tangents[0] = Some(Tangent {
+                dir: [0.6, 0.8],
+                at: at(TangentAt::Start),
+            });
+            tangents[3] = Some(Tangent {
+                dir: [-1.0, 0.0],
+                at: TangentAt::Peak,
+            });
+            tangents[n - 1] = Some(Tangent {
+                dir: [0.0, -1.0],
+                at: at(TangentAt::End),
+            });
+            check_with::<2, 4>(closed, n, tangents);
         }
     }
 
@@ -2959,6 +3059,7 @@ mod linear_tests {
             p,
             ghost: [[1.5; D], [-1.5; D]],
             basis: vec![basis; n],
+            tangents: Vec::new(),
         };
         let tol = 1e-12;
         let mut ws = Workspace::<D, B>::default();
@@ -3058,6 +3159,7 @@ mod linear_tests {
                     p,
                     ghost: [[1.2, -0.1], [1.2, 0.1]],
                     basis: vec![basis; n],
+                    tangents: Vec::new(),
                 };
                 let set = Settings {
                     tolerance: 1e-12,
@@ -3071,6 +3173,7 @@ mod linear_tests {
                         p: vec![],
                         ghost: [[0.0; 2]; 2],
                         basis: vec![],
+                        tangents: Vec::new(),
                     };
                     let out = ws.solve_cold(&prob, &set, &mut scratch);
                     (out, ws.state)

@@ -937,6 +937,7 @@ mod tests {
             p: vec![],
             ghost: [[0.0; D]; 2],
             basis: vec![],
+            tangents: Vec::new(),
         };
         assert!(ws.solve_cold(prob, set, &mut scratch).converged);
         ws
@@ -963,6 +964,7 @@ mod tests {
             p,
             ghost,
             basis: vec![basis; blocks],
+            tangents: Vec::new(),
         };
         let set = Settings {
             tolerance: 1e-12,
@@ -1070,6 +1072,7 @@ mod tests {
             ghost: [p[0], p[n - 1]],
             p,
             basis: vec![Basis::Cubic(CubicEk::new(0.85)); n],
+            tangents: Vec::new(),
         };
         let set = Settings {
             tolerance: 1e-12,
