@@ -143,6 +143,7 @@ struct ReadmeDoctests;
 mod guide_doctests {
     #[doc = include_str!("../docs/curves.md")]
     struct Curves;
+    #[cfg(feature = "font")]
     #[doc = include_str!("../docs/glyphs.md")]
     struct Glyphs;
     #[doc = include_str!("../docs/space-curves.md")]
