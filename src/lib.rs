@@ -96,6 +96,8 @@
 //!
 //! # Feature flags
 //!
+//! - `parallel` (default): long curves (2 048 points or more) solved on two threads, and
+//!   batches of curves spread over rayon's pool; the results are the same without it.
 //! - `render`: [`render`] (resvg, tiny-skia).
 //! - `serde`: JSON drawings ([`Design`]).
 //! - `font`: glyph import (ttf-parser), UFO export (norad), compiled fonts (write-fonts).
