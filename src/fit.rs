@@ -22,6 +22,30 @@
 //! Each segment is fitted on its own, so the path has a joint at every segment boundary.
 //! kurbo's fitted cubics take their end tangents from the source, so a joint that is G1 in
 //! the source stays G1 in the path (up to the rounding of the tangent directions).
+//!
+//! ```
+//! use kappa::fit::{fit, FitMethod, FitOptions};
+//! use kappa::Spline;
+//! use kurbo::{ParamCurveNearest, Point};
+//!
+//! // An εκ-curve in the trigonometric basis has no exact cubic form.
+//! let points = [(0.0, 0.0), (100.0, 10.0), (120.0, 90.0), (20.0, 110.0)].map(Point::from);
+//! let curve = Spline::ek_trig(&points, true, 0.75)?;
+//! let trig: Vec<_> = curve.segments().iter().map(|s| s.to_trig()).collect();
+//! let fitted = fit(&trig, true, &FitOptions::relative(1e-4))?;
+//! assert_eq!(fitted.cubics.len(), trig.len()); // cubics per source segment
+//! assert!(fitted.max_distance <= fitted.tolerance); // measured, not assumed
+//! // The input points, on the exact curve, are within the tolerance of the path.
+//! for p in points {
+//!     let d = fitted.path.segments().map(|s| s.nearest(p, 1e-9).distance_sq.sqrt());
+//!     assert!(d.fold(f64::INFINITY, f64::min) <= fitted.tolerance);
+//! }
+//! // Hermite subdivision: faster, more cubics, the same bound.
+//! let options = FitOptions { method: FitMethod::Hermite, ..FitOptions::relative(1e-4) };
+//! let quick = fit(&trig, true, &options)?;
+//! assert!(quick.max_distance <= quick.tolerance);
+//! # Ok::<(), kappa::Error>(())
+//! ```
 
 use core::ops::Range;
 

@@ -96,6 +96,8 @@
 //!
 //! # Feature flags
 //!
+//! - `parallel` (default): long curves (2 048 points or more) solved on two threads, and
+//!   batches of curves spread over rayon's pool; the results are the same without it.
 //! - `render`: [`render`] (resvg, tiny-skia).
 //! - `serde`: JSON drawings ([`Design`]).
 //! - `font`: glyph import (ttf-parser), UFO export (norad), compiled fonts (write-fonts).
@@ -137,6 +139,30 @@ pub mod trig;
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 struct ReadmeDoctests;
+
+/// The examples of the guide pages in `docs/`, compiled and run as doctests.
+#[cfg(doctest)]
+mod guide_doctests {
+    #[doc = include_str!("../docs/curves.md")]
+    struct Curves;
+    #[cfg(feature = "font")]
+    #[doc = include_str!("../docs/glyphs.md")]
+    struct Glyphs;
+    #[doc = include_str!("../docs/space-curves.md")]
+    struct SpaceCurves;
+    #[doc = include_str!("../docs/bsplines.md")]
+    struct BSplines;
+    #[doc = include_str!("../docs/intrinsic.md")]
+    struct Intrinsic;
+    #[doc = include_str!("../docs/cli.md")]
+    struct Cli;
+    #[doc = include_str!("../docs/hostile-input.md")]
+    struct HostileInput;
+    #[doc = include_str!("../docs/performance.md")]
+    struct Performance;
+    #[doc = include_str!("../docs/golden-images.md")]
+    struct GoldenImages;
+}
 
 pub use basis::Extremum;
 pub use batch::{BatchCurve, BatchSolver, BatchSolver3, BatchSolverN, MIN_PARALLEL_SEGMENTS};

@@ -380,6 +380,31 @@ impl Segment<Point3> {
 }
 
 /// A solved κ- or εκ-curve through 2D points.
+///
+/// Segment `i` of a closed curve passes through point `i` at its parameter `t_max`, where its
+/// |κ| is stationary (an open curve has a segment per interior point), and consecutive
+/// segments meet with equal curvature (G2).
+///
+/// ```
+/// use kappa::Spline;
+/// use kurbo::Point;
+///
+/// let points = [(0.0, 0.0), (100.0, 10.0), (120.0, 90.0), (20.0, 110.0)].map(Point::from);
+/// let curve = Spline::kappa(&points, true)?;
+/// let segments = curve.segments();
+/// assert_eq!(segments.len(), points.len());
+/// for (i, seg) in segments.iter().enumerate() {
+///     assert!((seg.eval(seg.t_max) - points[i]).hypot() < 1e-9);
+///     let next = &segments[(i + 1) % segments.len()];
+///     let (k0, k1) = (seg.curvature(1.0), next.curvature(0.0));
+///     assert!((k0 - k1).abs() <= 1e-9 * k0.abs().max(k1.abs()));
+/// }
+/// // An open εκ-curve: cubic segments, one per interior point.
+/// let open = Spline::ek_cubic(&points, false, 0.9)?;
+/// assert_eq!(open.segments().len(), 2);
+/// assert!(open.segments().iter().all(|s| s.degree == 3));
+/// # Ok::<(), kappa::Error>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Spline<P = Point> {
     scheme: Scheme,
@@ -792,6 +817,26 @@ pub struct SolverN<P, const D: usize, const B: usize> {
 }
 
 /// The 2D solver.
+///
+/// Keep one across edits: [`SolverN::resolve`] starts from the last solution and reuses its
+/// factored Jacobian, and [`SolverN::resolve_shapes`] changes the shapes `a_i` only.
+///
+/// ```
+/// use kappa::{Scheme, Shape, Solver};
+/// use kurbo::Point;
+///
+/// let mut points = [(0.0, 0.0), (100.0, 10.0), (120.0, 90.0), (20.0, 110.0)].map(Point::from);
+/// let mut solver = Solver::new();
+/// let cold = solver.solve(&points, true, Scheme::EkCubic, &Shape::Global(0.8))?;
+/// points[2].y += 3.0;
+/// let warm = solver.resolve(&points)?;
+/// assert!(cold.converged() && warm.converged());
+/// let seg = &warm.segments()[2];
+/// assert!((seg.eval(seg.t_max) - points[2]).hypot() < 1e-9); // through the moved point
+/// let softer = solver.resolve_shapes(Scheme::EkCubic, &Shape::Global(0.7))?;
+/// assert!(softer.segments().iter().all(|s| s.a == 0.7));
+/// # Ok::<(), kappa::Error>(())
+/// ```
 pub type Solver = SolverN<Point, 2, 4>;
 /// The 3D solver.
 pub type Solver3 = SolverN<Point3, 3, 5>;

@@ -513,6 +513,8 @@ fn cli_curve_bad_input() {
         ),
         (&["curve", "--shape", "0.8"], CLOSED_INPUT, "--design"),
         (&["curve", "--bogus"], CLOSED_INPUT, "--bogus"),
+        // A bare `kappa`: one line pointing at the help, not the help itself.
+        (&[], "", "kappa --help"),
     ];
     for (args, stdin, needle) in cases {
         let msg = assert_error(args, stdin);

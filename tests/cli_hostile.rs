@@ -8,8 +8,8 @@ mod common;
 
 use std::time::{Duration, Instant};
 
-/// Generous bound on the time of a rejected 10⁷-element input (measured well below; see the
-/// README, "Hostile input").
+/// Generous bound on the time of a rejected 10⁷-element input (measured well below; see
+/// docs/hostile-input.md).
 const HUGE_INPUT_TIME: Duration = Duration::from_secs(5);
 
 /// Runs `kappa args` on `stdin`, asserts the error contract, and returns the message and the

@@ -3,7 +3,7 @@
 //! near-cusp turns, self-intersecting input, spirals, 10⁵ points and coordinates at 1e-9
 //! and 1e9. Each case states its expected behaviour — a curve whose properties are checked
 //! by the oracles of `tests/hostile/` (interpolation, peaks at the points, G1/G2 joints, C2,
-//! exact maxima), or a named error. The README's "Hostile input" table lists them.
+//! exact maxima), or a named error. The table in docs/hostile-input.md lists them.
 
 mod common;
 mod hostile;

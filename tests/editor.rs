@@ -585,7 +585,7 @@ fn svg_import_and_export() {
 }
 
 /// The κ-curve through a dense open sine (40 samples of `(10 i, 50 sin 0.3 i)`) does not
-/// converge (README, "Known limits"): a solve that fails for sure.
+/// converge (docs/curves.md, "Known limits"): a solve that fails for sure.
 fn failing_sine(n: usize) -> PathDoc {
     PathDoc {
         points: (0..n)

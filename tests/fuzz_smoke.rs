@@ -1,7 +1,7 @@
 //! The fuzz targets' oracles on a short deterministic run, so that CI catches a regression
 //! without a fuzzer: every committed seed (`tests/fuzz_seeds/<target>/`) is replayed, then a
 //! fixed stream of pseudo-random byte strings goes through each target. The long runs are
-//! `cargo +nightly fuzz run <target>` (see the README, "Hostile input").
+//! `cargo +nightly fuzz run <target>` (see `docs/hostile-input.md`).
 
 mod common;
 mod hostile;
@@ -174,13 +174,13 @@ fn fuzz_smoke_font_compiled() {
     }
 }
 
-/// The reproducers of findings not fixed yet, kept in `tests/fuzz_seeds/<target>/known/`:
-/// at present four `bspline` inputs (nearly collinear data whose sampled |κ| exceeds the
-/// reported maximum; see the README, "Hostile input"). A new finding that cannot be fixed at
-/// once goes there, so that this test lists it without failing CI. Run with `--ignored`;
-/// `KAPPA_KNOWN_TARGET=bspline` (for example) replays one target's.
+/// The reproducers of findings not fixed yet, kept in `tests/fuzz_seeds/<target>/known/`.
+/// None is open at present (there is no `known/` directory; see `docs/hostile-input.md`). A
+/// new finding that cannot be fixed at once goes there, so that this test lists it without
+/// failing CI. Run with `--ignored`; `KAPPA_KNOWN_TARGET=bspline` (for example) replays one
+/// target's.
 #[test]
-#[ignore = "known findings, not fixed yet"]
+#[ignore = "replays open findings (tests/fuzz_seeds/*/known/); none is open"]
 fn fuzz_known_findings() {
     let targets: [Target; 6] = [
         ("solve2d", hostile::targets::solve2d),

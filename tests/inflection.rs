@@ -246,7 +246,7 @@ fn straight_runs_converge_in_every_scheme() {
                 // Known failure: the κ-curve (a = 2/3) of this zigzag, whose two straight
                 // legs meet their neighbours at near-symmetric inflections, is not found
                 // (the branch continued from a = 0.7 loses Newton between 2/3 + 1e-6 and
-                // 2/3 + 1e-7 of a; README, "Known limits").
+                // 2/3 + 1e-7 of a; docs/curves.md, "Known limits").
                 continue;
             }
             let what = format!("{name}, {scheme:?} a = {a}");

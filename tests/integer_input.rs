@@ -1,7 +1,7 @@
 //! Clicks on whole pixels: random walks on an integer grid and whole-pixel samples of smooth
 //! curves. Every curve that converges has the papers' properties; the convergence rates are
-//! measured per scheme, printed, and held above their measured floors (README, "Known
-//! limits", classifies the failures).
+//! measured per scheme, printed, and held above their measured floors (docs/curves.md,
+//! "Known limits", classifies the failures).
 
 mod common;
 
@@ -16,7 +16,7 @@ const SCHEMES: [(Scheme, f64); 3] = [
 
 /// Whether the walk doubles back on itself: a click within 1.5 units of the click two
 /// before it (a hairpin turn at the click between), where almost every failure on the grid
-/// walks is (README, "Known limits").
+/// walks is (docs/curves.md, "Known limits").
 fn hairpin(points: &[Point], closed: bool) -> bool {
     let m = points.len();
     let k = if closed { m } else { m - 2 };
@@ -163,6 +163,6 @@ fn whole_pixel_samples_of_smooth_curves() {
     }
     // Measured: κ 72 %, εκ-cubic and εκ-trig 95 %: dense samples (16 and more points a
     // turn) of curves whose curvature varies fail for κ, and the lemniscate's crossing
-    // fails at 32 and 48 points for all (README, "Known limits").
+    // fails at 32 and 48 points for all (docs/curves.md, "Known limits").
     report("whole-pixel samples", &rates(&cases), [0.65, 0.9, 0.9]);
 }

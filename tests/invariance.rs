@@ -1,6 +1,6 @@
 //! Invariances of every scheme: translating, rotating, uniformly scaling or reversing the
 //! input transforms the output accordingly, and closed curves do not depend on the starting
-//! point. The bounds asserted are the measured ones (see the README, "Hostile input"): the
+//! point. The bounds asserted are the measured ones (see docs/hostile-input.md): the
 //! linear schemes (B-splines) agree to rounding, the iterative solvers to what their
 //! convergence tolerance (1e-12 of the drawing size) leaves.
 

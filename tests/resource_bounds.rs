@@ -9,8 +9,8 @@ use kappa::{Error, Scheme, Shape, SolveOptions, Solver};
 use kurbo::Point;
 
 /// A loop densely sampled from a smooth curve of varying curvature: the κ solution
-/// degenerates there (peaks pushed to segment ends) and the solver cannot converge (README,
-/// "Known limits").
+/// degenerates there (peaks pushed to segment ends) and the solver cannot converge
+/// (docs/curves.md, "Known limits").
 fn wavy_loop(n: usize, amplitude: f64, waves: f64) -> Vec<Point> {
     (0..n)
         .map(|i| {

@@ -918,7 +918,7 @@ fn straight_and_failed_solves_have_no_state() {
 }
 
 /// Dense samples of a wave (a traced stroke): εκ-cubic with a = 0.72 converges at every
-/// length, where the κ-curve's branch folds (see the README's known limits); κ then says so
+/// length, where the κ-curve's branch folds (see docs/curves.md, "Known limits"); κ then says so
 /// and still returns its best curve when asked.
 #[test]
 fn dense_waves_converge_as_ek_curves() {

@@ -24,6 +24,27 @@
 //! no curve, and any edit with a coordinate or shape that is NaN or infinite, is not applied
 //! ([`Change::rejected`]). Undo and redo restore the curves and errors shown for each
 //! state ([`Editor::errors`]).
+//!
+//! ```
+//! use kappa::editor::Editor;
+//! use kappa::Scheme;
+//! use kurbo::Point;
+//!
+//! let mut editor = Editor::new(Scheme::EkCubic);
+//! for p in [(0.0, 0.0), (100.0, 20.0), (150.0, 100.0), (60.0, 140.0)] {
+//!     editor.add_point(Point::from(p));
+//! }
+//! // A drag: ten updates, each a warm re-solve of the pieces holding the point.
+//! for k in 1..=10 {
+//!     let change = editor.drag_point(1, Point::new(100.0 + k as f64, 20.0));
+//!     assert!(change.errors.is_empty() && change.resolved == [0]);
+//! }
+//! editor.end_drag();
+//! assert_eq!(editor.doc().points[1].point(), Point::new(110.0, 20.0));
+//! // The whole drag is one undo step.
+//! assert!(editor.undo());
+//! assert_eq!(editor.doc().points[1].point(), Point::new(100.0, 20.0));
+//! ```
 
 #[cfg(feature = "render")]
 mod svg;
@@ -246,6 +267,31 @@ fn piece_options() -> SolveOptions {
 }
 
 /// The editing engine (see the module docs).
+///
+/// ```
+/// use kappa::editor::Editor;
+/// use kappa::Scheme;
+/// use kurbo::Point;
+///
+/// let mut editor = Editor::new(Scheme::Kappa);
+/// for p in [(0.0, 0.0), (100.0, 20.0), (150.0, 100.0), (60.0, 140.0)] {
+///     editor.add_point(Point::from(p));
+/// }
+/// assert_eq!(editor.pieces(), 1);
+/// // A corner cuts the open path into two pieces, each solved on its own.
+/// editor.toggle_corner(1);
+/// assert_eq!(editor.pieces(), 2);
+/// assert_eq!(editor.piece_points(0), [0, 1]);
+/// assert_eq!(editor.piece_points(1), [1, 2, 3]);
+/// // A move re-solves only the piece holding the point.
+/// let change = editor.move_point(3, Point::new(50.0, 150.0));
+/// assert_eq!(change.resolved, [1]);
+/// // Undo restores the document and the curve shown.
+/// assert!(editor.undo());
+/// assert_eq!(editor.doc().points[3].point(), Point::new(60.0, 140.0));
+/// assert!(editor.undo());
+/// assert_eq!(editor.pieces(), 1);
+/// ```
 #[derive(Clone, Debug, Default)]
 pub struct Editor {
     doc: PathDoc,

@@ -98,6 +98,28 @@ pub struct HermiteEnd {
 }
 
 /// G1 or G2 Hermite data: two ends with points, tangent angles and (G2) curvatures.
+///
+/// [`Hermite::solve`] finds the segment of a given curvature [`Profile`] that meets them.
+///
+/// ```
+/// use kappa::intrinsic::{Hermite, Profile};
+/// use kurbo::{ParamCurve, Point};
+///
+/// // G1 data and degree 1: the clothoid, curvature linear in arc length.
+/// let g1 = Hermite::g1(Point::new(0.0, 0.0), 0.3, Point::new(10.0, 4.0), 1.6);
+/// let clothoid = g1.solve(&Profile::clothoid())?;
+/// assert_eq!(clothoid.degree(), 1);
+/// assert!(g1.end_error(&clothoid) < 1e-10);
+///
+/// // G2 data: the end curvatures are the first and last control curvatures.
+/// let g2 = Hermite::g2(Point::new(0.0, 0.0), 0.3, -0.1, Point::new(10.0, 4.0), 1.6, 0.3);
+/// let quintic = g2.solve(&Profile::free(5))?;
+/// let k = quintic.curvatures();
+/// assert_eq!(k.len(), 6);
+/// assert!((k[0] + 0.1).abs() < 1e-9 && (k[5] - 0.3).abs() < 1e-9);
+/// assert!((quintic.end() - g2.end.point).hypot() < 1e-9);
+/// # Ok::<(), kappa::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Hermite {
     /// The start.

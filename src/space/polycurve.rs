@@ -11,6 +11,27 @@ use super::{Gamma, PeakAtJoint, Replace, SpaceOptions, MIN_REPLACED};
 
 /// A G2 space curve through 3D points: the quadratic κ-curve with a quartic at every joint
 /// (seed 004). See the [module docs](super).
+///
+/// ```
+/// use kappa::space::{SpaceCurve, SpaceOptions};
+/// use kappa::Point3;
+///
+/// let helix: Vec<Point3> = (0..8)
+///     .map(|i| {
+///         let th = 0.9 * i as f64;
+///         Point3::new(50.0 * th.cos(), 50.0 * th.sin(), 12.0 * th)
+///     })
+///     .collect();
+/// let curve = SpaceCurve::new(&helix, false, &SpaceOptions::default())?;
+/// // G2: the curvature vectors agree at every joint (relative gap).
+/// assert!(curve.curvature_vector_gaps().iter().all(|&g| g < 1e-9));
+/// // Every interior point lies on the curve, at the parameter of its |κ| peak.
+/// assert!(curve.missed_points().is_empty());
+/// for (&(segment, t), p) in curve.point_params().iter().zip(&helix[1..]) {
+///     assert!(curve.segments()[segment].eval(t).distance(*p) < 1e-9);
+/// }
+/// # Ok::<(), kappa::Error>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct SpaceCurve {
     closed: bool,

@@ -31,7 +31,7 @@ use crate::picture;
         {\"points\": [[x, y], ...], \"closed\": true, \"scheme\": \"kappa\" | \"ek-cubic\" | \"ek-trig\", \
         \"shape\": 0.8 | [a0, a1, ...]}\n\
         'closed' defaults to true, 'scheme' to \"kappa\", 'shape' (ek-cubic: in [2/3, 1), default \
-        2/3; ek-trig: in [1/2, 1), default 0.65); other fields are rejected.\n\n\
+        2/3; ek-trig: in [1/2, 1), default 0.7); other fields are rejected.\n\n\
         Output (stdout), one JSON object on one line:\n  \
         {\"scheme\": ..., \"closed\": ..., \"iterations\": n, \"converged\": true, \
         \"segments\": [{\"degree\": 2 | 3, \"points\": [[x, y], ...], \"t_max\": t, \
@@ -75,7 +75,7 @@ pub struct CurveArgs {
     scheme: Option<SchemeName>,
     /// Global shape parameter `a` for a drawing (ek-cubic: in [2/3, 1); ek-trig: in
     /// [1/2, 1)). Without it, the εκ schemes use each curve's own "shape" list if it has
-    /// one, else their default (2/3, 0.65).
+    /// one, else their default (2/3, 0.7).
     #[arg(
         long,
         value_name = "A",

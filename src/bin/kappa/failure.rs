@@ -44,15 +44,17 @@ fn one_line(text: &str) -> String {
 }
 
 /// Reports a command-line parsing error: `--help` and `--version` print as usual, everything
-/// else becomes one `kappa: error:` line with exit code 2.
+/// else (a bare `kappa` too) becomes one `kappa: error:` line with exit code 2.
 pub fn usage_error(e: clap::Error) -> ExitCode {
     use clap::error::ErrorKind;
     match e.kind() {
-        ErrorKind::DisplayHelp
-        | ErrorKind::DisplayVersion
-        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
             let _ = e.print();
             ExitCode::from(if e.use_stderr() { EXIT_ERROR } else { 0 })
+        }
+        // clap shows the whole help for a missing command; the contract is one line.
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            Failure::new("no command given; try 'kappa --help'").report()
         }
         _ => {
             // clap's message is the text before the "Usage:" or "For more information" line;

@@ -1,4 +1,4 @@
-//! `kappa gallery`: render the README gallery.
+//! `kappa gallery`: render the gallery (the figures of the README and docs/).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -42,10 +42,10 @@ const GLYPH_FONT: &[u8] = include_bytes!("../../../tests/fonts/DejaVuSans.ttf");
 /// A cubic (CFF) font for the second glyph figure (EB Garamond 12, a Latin-1 subset; OFL).
 const CUBIC_FONT: &[u8] = include_bytes!("../../../tests/fonts/EBGaramond12-Regular-subset.otf");
 
-/// Render the README gallery (PNG figures and SVG panels).
+/// Render the gallery (PNG figures and SVG panels).
 #[derive(Debug, Args)]
 #[command(
-    long_about = "Render the README gallery into DIR (created if needed):\n  \
+    long_about = "Render the gallery into DIR (created if needed):\n  \
         <name>.png          bear, elephant, bird and designer (a wave and a symmetric S \
         with inflections through points, a curl on whole pixels, straight runs) as a \
         κ-curve and as εκ-curves with \
