@@ -4,7 +4,7 @@ use kurbo::{BezPath, CubicBez, ParamCurve, PathSeg, Point, QuadBez};
 
 use crate::basis::{classify, Basis, CubicEk, Extremum, TrigEk};
 use crate::fit::{FitOptions, Fitted};
-use crate::solver::{Edit, Outcome, Problem, Settings, Tangent, TangentAt, Workspace};
+use crate::solver::{Edit, Outcome, Problem, Settings, State, Tangent, TangentAt, Workspace};
 use crate::trig::TrigBez;
 use crate::{Error, Point3, SolvedState};
 
@@ -813,7 +813,25 @@ pub struct SolverN<P, const D: usize, const B: usize> {
     local: Vec<[f64; D]>,
     /// Prescribed tangent directions by input point (empty: none), as given.
     tangents: Vec<Option<[f64; D]>>,
+    /// The last free curve (no tangents) solved cold, by its input: a solve with tangents
+    /// of the same input turns its directions from there without solving it again.
+    free: Option<FreeCurve<D>>,
     _marker: core::marker::PhantomData<P>,
+}
+
+/// A free curve's solution and the input it solves (see `SolverN::free`).
+#[derive(Clone, Debug)]
+struct FreeCurve<const D: usize> {
+    points: Vec<[f64; D]>,
+    closed: bool,
+    basis: Vec<Basis>,
+    state: State<D>,
+}
+
+impl<const D: usize> FreeCurve<D> {
+    fn input(&self) -> (&Vec<[f64; D]>, bool, &Vec<Basis>) {
+        (&self.points, self.closed, &self.basis)
+    }
 }
 
 /// The 2D solver.
@@ -952,6 +970,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
             warm: false,
             local: Vec::new(),
             tangents: Vec::new(),
+            free: None,
             _marker: core::marker::PhantomData,
         }
     }
@@ -1390,12 +1409,33 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
     /// The cold solve: the cascade of [`Workspace::solve_cold`], or with tangents
     /// [`Workspace::solve_cold_tangents`].
     fn cold(&mut self, settings: &Settings) -> Outcome {
+        let input = (&self.points, self.prob.closed, &self.prob.basis);
+        let cached = self.free.take().filter(|f| f.input() == input);
         if self.prob.tangents.is_empty() {
-            self.ws.solve_cold(&self.prob, settings, &mut self.scratch)
-        } else {
-            self.ws
-                .solve_cold_tangents(&self.prob, settings, &mut self.scratch)
+            let out = self.ws.solve_cold(&self.prob, settings, &mut self.scratch);
+            if out.converged {
+                self.free = Some(FreeCurve {
+                    points: self.points.clone(),
+                    closed: self.prob.closed,
+                    basis: self.prob.basis.clone(),
+                    state: self.ws.state.clone(),
+                });
+            }
+            return out;
         }
+        let mut free = cached.as_ref().map(|f| f.state.clone());
+        let out = self
+            .ws
+            .solve_cold_tangents(&self.prob, settings, &mut self.scratch, &mut free);
+        self.free = cached.or_else(|| {
+            free.map(|state| FreeCurve {
+                points: self.points.clone(),
+                closed: self.prob.closed,
+                basis: self.prob.basis.clone(),
+                state,
+            })
+        });
+        out
     }
 
     /// The solution for open input on one line: straight segments with `c_j = p_j`, joints

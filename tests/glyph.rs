@@ -956,3 +956,52 @@ fn without_points(path: &kurbo::BezPath) -> kurbo::BezPath {
     }
     out
 }
+
+/// Extremum anchors hold the original's axis as their tangent in the solve
+/// (`DraftOptions::extremum_tangents`): where an anchor reports a tangent, the drafted curve
+/// runs along it at the anchor (within 1e-8 rad), and most extremum anchors of the word get
+/// one; without the option none does.
+#[test]
+fn glyph_extremum_anchors_hold_their_axis() {
+    for (scheme, shape) in [
+        (Scheme::Kappa, DraftShape::Neutral),
+        (Scheme::EkCubic, DraftShape::Global(0.8)),
+    ] {
+        let (mut extrema, mut held) = (0, 0);
+        let data = font_data();
+        let font = FontOutlines::parse(&data).unwrap();
+        let mut opts = options(scheme, shape.clone());
+        opts.extremum_tangents = true;
+        for ch in WORD.chars() {
+            let drafted = draft(&font.glyph(ch).unwrap().path, &opts).unwrap();
+            for piece in drafted.pieces().filter(|p| !p.fallback) {
+                let segs = piece.spline.segments();
+                let m = piece.anchors.len();
+                for (i, a) in piece.anchors.iter().enumerate() {
+                    extrema += usize::from(a.kind == AnchorKind::Extremum);
+                    let Some(tan) = a.tangent else { continue };
+                    held += usize::from(a.kind == AnchorKind::Extremum);
+                    let d = match (piece.closed, i) {
+                        (true, _) => segs[i].derivative(segs[i].t_max),
+                        (false, 0) => segs[0].derivative(0.0),
+                        (false, i) if i + 1 == m => segs[segs.len() - 1].derivative(1.0),
+                        (false, i) => segs[i - 1].derivative(segs[i - 1].t_max),
+                    };
+                    let angle = tan.cross(d).atan2(tan.dot(d));
+                    assert!(angle.abs() <= 1e-8, "{scheme:?}: off by {angle} rad");
+                    if a.kind == AnchorKind::Extremum {
+                        assert!(tan.x == 0.0 || tan.y == 0.0, "{scheme:?}: {tan:?}");
+                    }
+                }
+            }
+        }
+        // Measured: κ 18 of 30, εκ-cubic 0.8 similar; the others' axes are too far from
+        // the free curve's for a solution through the same anchors.
+        println!("{scheme:?}: {held} of {extrema} extremum anchors hold their axis");
+        assert!(held * 2 >= extrema, "{scheme:?}: {held} of {extrema}");
+        let plain = draft(&font.glyph('o').unwrap().path, &options(scheme, shape)).unwrap();
+        assert!(plain
+            .pieces()
+            .all(|p| p.anchors.iter().all(|a| a.tangent.is_none())));
+    }
+}

@@ -68,6 +68,15 @@ pub struct DraftOptions {
     /// Drop the anchors the piece does not need to stay within the tolerance ([`draft`],
     /// step 5): fewer points, about four times the drafting time.
     pub simplify: bool,
+    /// Hold the original's axis as the tangent at every extremum anchor inside a piece
+    /// ([`Solver::solve_with_tangents`](crate::Solver::solve_with_tangents)): once the
+    /// anchors are chosen, the piece is solved again with those tangents and kept if it
+    /// stays within the tolerance. The curve is then G2 at the anchor with an exactly
+    /// horizontal or vertical tangent, where the node outline would otherwise turn the
+    /// handles after the solve (G1 only); the anchor is no longer a curvature peak. Off by
+    /// default (`kappa font` turns it on); about three times the drafting time where
+    /// pieces hold many tangents.
+    pub extremum_tangents: bool,
 }
 
 impl Default for DraftOptions {
@@ -80,7 +89,7 @@ impl Default for DraftOptions {
 impl DraftOptions {
     /// κ-curve options scaled to a font's em: tolerance `0.004 em` (8 units at 2048),
     /// minimum spacing `0.06 em`, corners above 15°, 16 samples per segment, at most 32
-    /// refinements per piece, no fairing, no simplification.
+    /// refinements per piece, no fairing, no simplification, no extremum tangents.
     pub fn for_units_per_em(units_per_em: f64) -> DraftOptions {
         DraftOptions {
             scheme: Scheme::Kappa,
@@ -92,6 +101,7 @@ impl DraftOptions {
             max_refinements: 32,
             fair: false,
             simplify: false,
+            extremum_tangents: false,
         }
     }
 
@@ -166,6 +176,10 @@ pub struct Anchor {
     pub a: f64,
     /// The original's |κ| at the point (0 for user points).
     pub target_curvature: f64,
+    /// The tangent direction the solve held at the anchor
+    /// ([`Solver::solve_with_tangents`](crate::Solver::solve_with_tangents)), if any: the
+    /// axis of an extremum anchor ([`DraftOptions::extremum_tangents`]).
+    pub tangent: Option<Vec2>,
 }
 
 /// A drafted piece: an open curve between two corners, or a whole closed contour.
@@ -349,6 +363,7 @@ pub fn draft(outline: &BezPath, options: &DraftOptions) -> Result<DraftedGlyph, 
         options,
         size,
         solver: Solver::new(),
+        tangents: Vec::new(),
     };
     let mut contours = Vec::new();
     let mut hausdorff = 0.0f64;
@@ -704,6 +719,7 @@ fn anchors_of(spline: &Spline, points: &[Point], kind: AnchorKind, targets: &[f6
                 kind,
                 a,
                 target_curvature: targets.get(i).copied().unwrap_or(0.0),
+                tangent: None,
             }
         })
         .collect()
@@ -715,6 +731,8 @@ struct Solved {
     points: Vec<Point>,
     targets: Vec<f64>,
     path: BezPath,
+    /// The tangents held, by anchor (empty: none).
+    tangents: Vec<Option<Vec2>>,
 }
 
 /// `x` with the lowest 23 of its 52 mantissa bits cleared (a relative step of 2⁻²⁹, about
@@ -800,14 +818,16 @@ fn two_way(original: &Target<'_>, solved: &Solved, k: usize) -> f64 {
 
 /// The drafted piece from its last solve and its two-sided Hausdorff distance.
 fn finish(anchors: &[Cand], solved: Solved, closed: bool, hausdorff: f64, tolerance: f64) -> Piece {
+    let tangents = solved.tangents.clone();
     let mut out = anchors_of(
         &solved.spline,
         &solved.points,
         AnchorKind::Refined,
         &solved.targets,
     );
-    for (a, c) in out.iter_mut().zip(anchors) {
+    for (i, (a, c)) in out.iter_mut().zip(anchors).enumerate() {
         a.kind = c.kind;
+        a.tangent = tangents.get(i).copied().flatten();
     }
     Piece {
         anchors: out,
@@ -819,6 +839,52 @@ fn finish(anchors: &[Cand], solved: Solved, closed: bool, hausdorff: f64, tolera
         fallback: false,
     }
 }
+
+/// The original's unit tangent at `s` (a position along `segs`, as [`eval_at`] takes it), in
+/// its direction of travel: the direction of a chord 1e-6 of a segment long (`None` where
+/// that has no length).
+fn direction_at(segs: &[PathSeg], s: f64) -> Option<Vec2> {
+    let n = segs.len();
+    let i = (s.floor().max(0.0) as usize).min(n - 1);
+    let t = (s - i as f64).clamp(0.0, 1.0);
+    let (a, b) = if t < 1.0 {
+        (segs[i].eval(t), segs[i].eval((t + 1e-6).min(1.0)))
+    } else {
+        (segs[i].eval(t - 1e-6), segs[i].eval(t))
+    };
+    let d = b - a;
+    let len = d.hypot();
+    (len > 0.0 && len.is_finite()).then(|| d / len)
+}
+
+/// The axis the original runs along at `s`, in its direction: at an extremum one of its
+/// derivative's components is zero, or nearly.
+fn axis_tangent(segs: &[PathSeg], s: f64) -> Option<Vec2> {
+    let d = direction_at(segs, s)?;
+    Some(if d.x.abs() >= d.y.abs() {
+        Vec2::new(d.x.signum(), 0.0)
+    } else {
+        Vec2::new(0.0, d.y.signum())
+    })
+}
+
+/// The original's unit tangent at `s`, turned onto an axis if within [`AXIS_SNAP`] of it.
+fn original_tangent(segs: &[PathSeg], s: f64) -> Option<Vec2> {
+    let d = direction_at(segs, s)?;
+    let axis = axis_tangent(segs, s)?;
+    Some(if d.dot(axis) >= AXIS_SNAP.cos() {
+        axis
+    } else {
+        d
+    })
+}
+
+/// How near an axis (radians) the original's tangent at a piece's end is taken to be on it.
+const AXIS_SNAP: f64 = 1.0 * core::f64::consts::PI / 180.0;
+
+/// The spacing of extremum anchors, as a fraction of [`DraftOptions::min_spacing`]
+/// ([`draft`], step 1).
+const EXTREMUM_SPACING: f64 = 0.25;
 
 /// How many times a piece that will not solve is cut in two ([`draft`], step 7).
 pub const SPLIT_DEPTH: usize = 3;
@@ -839,6 +905,7 @@ fn fallback_piece(segs: &[PathSeg], closed: bool) -> Option<Piece> {
         kind: AnchorKind::Corner,
         a: 2.0 / 3.0,
         target_curvature: 0.0,
+        tangent: None,
     };
     Some(Piece {
         anchors: vec![anchor(start), anchor(end)],
@@ -855,6 +922,8 @@ struct Drafter<'o> {
     options: &'o DraftOptions,
     size: f64,
     solver: Solver,
+    /// The tangents the next solves hold, by anchor (empty: none).
+    tangents: Vec<Option<Vec2>>,
 }
 
 /// A candidate anchor: position along the piece and kind.
@@ -912,6 +981,12 @@ impl Drafter<'_> {
             }
             if opts.simplify {
                 (anchors, solved) = self.simplify(segs, closed, &original, k, (anchors, solved));
+            }
+        }
+        if opts.extremum_tangents {
+            let held = self.with_extremum_tangents(segs, closed, &anchors, &original, k);
+            if let Some(held) = held {
+                solved = held;
             }
         }
         let hausdorff = two_way(&original, &solved, k);
@@ -1154,9 +1229,15 @@ impl Drafter<'_> {
         let mut kept: Vec<(Cand, Point)> = Vec::new();
         for c in cands {
             let p = eval_at(segs, c.s);
+            // Extrema are where a designer puts nodes: they keep a closer spacing.
+            let spacing = if c.kind == AnchorKind::Extremum {
+                EXTREMUM_SPACING * self.options.min_spacing
+            } else {
+                self.options.min_spacing
+            };
             let far = kept
                 .iter()
-                .all(|(_, q)| (p - *q).hypot() >= self.options.min_spacing.max(f64::MIN_POSITIVE));
+                .all(|(_, q)| (p - *q).hypot() >= spacing.max(f64::MIN_POSITIVE));
             if c.kind == AnchorKind::Corner || far {
                 kept.push((c, p));
             }
@@ -1292,17 +1373,10 @@ impl Drafter<'_> {
         let scheme = self.options.scheme;
         let interior = closed || points.len() > 2;
         let spline = match (&self.options.shape, scheme) {
-            (_, Scheme::Kappa) => self
-                .solver
-                .solve(&points, closed, scheme, &Shape::Neutral)?,
+            (_, Scheme::Kappa) => self.solve_points(&points, closed, &Shape::Neutral)?,
             (DraftShape::Auto, _) if interior => self.auto_shape(&points, closed, &targets)?,
-            (DraftShape::Global(a), _) => {
-                self.solver
-                    .solve(&points, closed, scheme, &Shape::Global(*a))?
-            }
-            _ => self
-                .solver
-                .solve(&points, closed, scheme, &Shape::Neutral)?,
+            (DraftShape::Global(a), _) => self.solve_points(&points, closed, &Shape::Global(*a))?,
+            _ => self.solve_points(&points, closed, &Shape::Neutral)?,
         };
         let path = if !closed && points.len() == 2 {
             // A straight piece: one line, whatever the scheme.
@@ -1318,7 +1392,99 @@ impl Drafter<'_> {
             points,
             targets,
             path,
+            tangents: self.tangents.clone(),
         })
+    }
+
+    /// A solve through `points` with the options' scheme, holding [`Drafter::tangents`]
+    /// where there are any.
+    fn solve_points(
+        &mut self,
+        points: &[Point],
+        closed: bool,
+        shape: &Shape,
+    ) -> Result<Spline, Error> {
+        let scheme = self.options.scheme;
+        if self.tangents.is_empty() {
+            self.solver.solve(points, closed, scheme, shape)
+        } else {
+            self.solver
+                .solve_with_tangents(points, closed, scheme, shape, &self.tangents)
+        }
+    }
+
+    /// The piece solved again with the original's axis held at extremum anchors inside the
+    /// piece and, on an open piece, the original's own direction at both ends
+    /// ([`DraftOptions::extremum_tangents`]): all of them if that converges and stays
+    /// within the tolerance, otherwise as many as can be added one at a time, in order
+    /// along the piece, with the piece still converging and within the tolerance (a tangent
+    /// far from the free curve's may have no solution: the point would leave its segment).
+    /// `None` where none can be held.
+    fn with_extremum_tangents(
+        &mut self,
+        segs: &[PathSeg],
+        closed: bool,
+        anchors: &[Cand],
+        original: &Target<'_>,
+        k: usize,
+    ) -> Option<Solved> {
+        let m = anchors.len();
+        if !closed && m < 3 {
+            return None;
+        }
+        let wanted: Vec<Option<Vec2>> = anchors
+            .iter()
+            .enumerate()
+            .map(|(i, c)| {
+                if !closed && (i == 0 || i + 1 == m) {
+                    // The original's own direction leaving (entering) the piece.
+                    original_tangent(segs, c.s)
+                } else if c.kind == AnchorKind::Extremum {
+                    axis_tangent(segs, c.s)
+                } else {
+                    None
+                }
+            })
+            .collect();
+        let count = wanted.iter().flatten().count();
+        if count == 0 {
+            return None;
+        }
+        let mut held = self.solve_holding(segs, closed, anchors, original, k, &wanted);
+        if held.is_some() || count == 1 {
+            return held;
+        }
+        let mut kept = vec![None; m];
+        for (i, tan) in wanted.iter().enumerate() {
+            if tan.is_none() {
+                continue;
+            }
+            kept[i] = *tan;
+            match self.solve_holding(segs, closed, anchors, original, k, &kept) {
+                Some(next) => held = Some(next),
+                None => kept[i] = None,
+            }
+        }
+        held
+    }
+
+    /// The piece solved with `tangents` held, if it converges and stays within the
+    /// tolerance.
+    fn solve_holding(
+        &mut self,
+        segs: &[PathSeg],
+        closed: bool,
+        anchors: &[Cand],
+        original: &Target<'_>,
+        k: usize,
+        tangents: &[Option<Vec2>],
+    ) -> Option<Solved> {
+        self.tangents = tangents.to_vec();
+        let solved = self.solve(segs, closed, anchors);
+        self.tangents.clear();
+        solved
+            .ok()
+            .filter(|s| within(original, s, k, self.options.tolerance))
     }
 
     /// The auto shape ([`draft`], step 6).
@@ -1349,10 +1515,7 @@ impl Drafter<'_> {
         // The lowest shape first; should that system not be solvable (εκ-trig near its
         // peak/minimum fold), the scheme's neutral shape.
         let mut a0 = vec![lo; m];
-        let s0 = match self
-            .solver
-            .solve(points, closed, scheme, &Shape::PerPoint(a0.clone()))
-        {
+        let s0 = match self.solve_points(points, closed, &Shape::PerPoint(a0.clone())) {
             Ok(s) => s,
             Err(e) => {
                 let neutral = scheme.neutral_shape();
@@ -1360,8 +1523,7 @@ impl Drafter<'_> {
                     return Err(e);
                 }
                 a0 = vec![neutral; m];
-                self.solver
-                    .solve(points, closed, scheme, &Shape::PerPoint(a0.clone()))?
+                self.solve_points(points, closed, &Shape::PerPoint(a0.clone()))?
             }
         };
         let mut k0 = peaks(&s0);
@@ -1578,6 +1740,7 @@ mod tests {
                 max_iterations,
                 ..crate::SolveOptions::default()
             }),
+            tangents: Vec::new(),
         };
         let pieces = drafter.piece_or_parts(segs, true, 0);
         let mut at = segs[0].start();

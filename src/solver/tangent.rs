@@ -49,10 +49,17 @@
 //! the solution found is on the free curve's branch.
 
 use super::{
-    dot, Basis, Local, Outcome, Problem, Settings, Var, Workspace, CLASSIC_START, MIN_STEP,
+    dot, Basis, Local, Outcome, Problem, Settings, State, Var, Workspace, CLASSIC_START,
     STEP_BUDGET,
 };
 use crate::basis::SegmentBasis;
+
+/// The smallest step of [`Workspace::tangent_continuation`] (a fraction of each turn).
+/// Where the directions cannot be turned further in steps of this size, the tangents have
+/// usually left the range where a solution exists (the constrained point would have to
+/// leave its segment): measured on the alphabets of DejaVu Sans and EB Garamond, stopping
+/// at 1/128 instead of 1e-6 keeps the same tangents and drafts in a third of the time.
+const TANGENT_MIN_STEP: f64 = 1.0 / 128.0;
 
 /// A tangent constraint on a block: the curve's tangent at a parameter of the block's
 /// segment must point along `dir` (a unit vector, normalized coordinates; 2D only).
@@ -203,13 +210,14 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         prob: &Problem<D>,
         set: &Settings,
         scratch: &mut Problem<D>,
+        free: &mut Option<State<D>>,
     ) -> Outcome {
         // Half the budget each (a continuation that does not converge spends all it has).
         let half = Settings {
             max_iterations: set.max_iterations / 2,
             ..*set
         };
-        let along = self.tangent_continuation(prob, &half, scratch, 0);
+        let along = self.tangent_continuation(prob, &half, scratch, free);
         if along.converged || along.iterations >= set.max_iterations {
             return along;
         }
@@ -238,12 +246,15 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// usual cold cascade), then turn each prescribed direction from the free curve's
     /// tangent at the same parameter to its target, in steps that grow by 1.5 after a
     /// success and halve after a failure (as the shape continuation does).
+    ///
+    /// `free` is the free curve's solution if known (it is then not solved again), and holds
+    /// it on return when it was solved here.
     fn tangent_continuation(
         &mut self,
         prob: &Problem<D>,
         set: &Settings,
         scratch: &mut Problem<D>,
-        used: usize,
+        free: &mut Option<State<D>>,
     ) -> Outcome {
         let budget = |used: usize, cap: usize| Settings {
             max_iterations: cap.min(set.max_iterations.saturating_sub(used)),
@@ -251,13 +262,20 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         };
         let mut moving = prob.clone();
         moving.tangents.clear();
-        let free = self.solve_cold(&moving, &budget(used, usize::MAX), scratch);
-        let mut total = used + free.iterations;
-        if !free.converged {
-            return Outcome {
-                iterations: total,
-                ..free
-            };
+        let mut total = 0;
+        match free {
+            Some(known) => self.state.clone_from(known),
+            None => {
+                let out = self.solve_cold(&moving, &budget(0, usize::MAX), scratch);
+                total += out.iterations;
+                if !out.converged {
+                    return Outcome {
+                        iterations: total,
+                        ..out
+                    };
+                }
+                *free = Some(self.state.clone());
+            }
         }
         // Each constrained block's start direction and the angle to turn it by.
         let turns: Vec<Option<([f64; D], f64, Tangent<D>)>> = prob
@@ -287,7 +305,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         };
         let (mut s, mut ds) = (0.0f64, 0.25f64);
         let mut saved = self.state.clone();
-        while s < 1.0 && total < set.max_iterations && ds > MIN_STEP {
+        while s < 1.0 && total < set.max_iterations && ds > TANGENT_MIN_STEP {
             let s_try = (s + ds).min(1.0);
             blend(&mut moving, s_try);
             let step = self.solve(&moving, &budget(total, STEP_BUDGET), 0, false);

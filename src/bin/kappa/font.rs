@@ -86,6 +86,11 @@ pub struct FontArgs {
         allow_negative_numbers = true
     )]
     quad_tolerance: f64,
+    /// Hold the original's axis as the tangent at extremum nodes in the solve (G2 there,
+    /// the node no longer a curvature peak). The UFO's κ sources do not record these
+    /// tangents yet: re-solved by the path tool, those contours come back without them.
+    #[arg(long)]
+    extremum_tangents: bool,
     /// The family name of the written font.
     #[arg(long, value_name = "NAME", default_value = "")]
     family: String,
@@ -183,6 +188,7 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
         FontOutlines::parse(&data).map_err(|e| Failure::new(e).context(args.font.display()))?;
     let upem = font.units_per_em();
     let mut options = DraftOptions::for_units_per_em(upem).with_scheme(scheme, shape);
+    options.extremum_tangents = args.extremum_tangents;
     if let Some(t) = args.tolerance {
         if !(t.is_finite() && t > 0.0) {
             return Err(Failure::new("--tolerance must be a positive number"));
