@@ -1027,6 +1027,8 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         shape: &Shape,
         start: &SolvedState,
     ) -> Result<Spline<P>, Error> {
+        // (A free curve, as `solve` solves it: no tangents.)
+        self.tangents.clear();
         self.warm = false;
         self.setup(points, closed, scheme, Some(shape))?;
         // (Open input of two points has no unknowns: nothing to start from.)

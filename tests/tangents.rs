@@ -307,3 +307,25 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn solve_from_after_tangents_solves_the_free_curve() {
+    let (points, tans) = ellipse();
+    let mut solver = Solver::new();
+    let shape = Shape::Global(0.8);
+    let free = solver
+        .solve(&points, true, Scheme::EkCubic, &shape)
+        .unwrap();
+    let state = solver.state().unwrap();
+    let mut turned = tans.clone();
+    turned[1] = Some(Vec2::new(-1.0, 0.7));
+    solver
+        .solve_with_tangents(&points, true, Scheme::EkCubic, &shape, &turned)
+        .unwrap();
+    let again = solver
+        .solve_from(&points, true, Scheme::EkCubic, &shape, &state)
+        .unwrap();
+    for (a, b) in again.segments().iter().zip(free.segments()) {
+        assert!((a.eval(0.5) - b.eval(0.5)).hypot() <= 1e-9);
+    }
+}
