@@ -828,3 +828,60 @@ proptest! {
         }
     }
 }
+
+/// A drawing of two contours (an `o`): one history over both, Clear undone, and its file
+/// (JSON, and inside an SVG) reopens the same drawing; a file of one path from before
+/// drawings still opens.
+#[cfg(feature = "serde")]
+#[test]
+fn drawing_of_an_o_round_trips() {
+    use kappa::editor::{extract_svg_document, Drawing, DrawingDoc};
+    let ring = |r: f64| -> Vec<Point> {
+        (0..8)
+            .map(|i| {
+                let th = f64::from(i) / 8.0 * std::f64::consts::TAU;
+                Point::new(300.0 + r * th.cos(), 300.0 + 1.2 * r * th.sin())
+            })
+            .collect()
+    };
+    let mut d = Drawing::new(Scheme::EkCubic);
+    for r in [150.0, 90.0] {
+        let pts = ring(r);
+        let (k, _) = d.start_contour(pts[0]);
+        for &p in &pts[1..] {
+            d.add_point(k, p);
+        }
+        d.set_closed(k, true);
+    }
+    d.toggle_corner(1, 0);
+    assert!(d.errors().is_empty());
+    let doc = DrawingDoc::of(&d);
+    assert!(d.clear() && d.is_empty());
+    assert!(d.undo());
+    assert_eq!(DrawingDoc::of(&d), doc);
+    let svg = d.to_svg_with_document(600.0, 600.0, true);
+    // Each closed contour is one subpath ending in Z, the cornered one too.
+    let path = svg
+        .split("<path d=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap();
+    assert_eq!(path.matches('M').count(), 2);
+    assert_eq!(path.matches('Z').count(), 2);
+    let back = extract_svg_document(&svg).unwrap();
+    assert_eq!(back, doc);
+    let (again, changes) = Drawing::from_docs(back.contours, Scheme::Kappa);
+    assert_eq!(again.len(), 2);
+    assert!(changes.iter().all(|c| c.errors.is_empty()));
+    // One path's document, as saved before drawings had several contours.
+    let one = r#"{"points":[{"x":0.0,"y":0.0,"shape":0.8,"corner":false},
+        {"x":100.0,"y":40.0,"shape":0.8,"corner":false},{"x":200.0,"y":0.0,"shape":0.8,
+        "corner":false}],"closed":false,"scheme":"ek-cubic"}"#;
+    let old = DrawingDoc::from_json(one).unwrap();
+    let (d, _) = Drawing::from_docs(old.contours, Scheme::Kappa);
+    assert_eq!(d.len(), 1);
+    assert_eq!(d.scheme(), Scheme::EkCubic);
+    assert_eq!(d.contour(0).unwrap().pieces(), 1);
+}

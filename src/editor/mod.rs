@@ -25,8 +25,17 @@
 //! ([`Change::rejected`]). Undo and redo restore the curves and errors shown for each
 //! state ([`Editor::errors`]).
 
+mod comb;
+mod drawing;
+#[cfg(feature = "serde")]
+mod file;
 #[cfg(feature = "render")]
 mod svg;
+
+pub use comb::{Comb, CombStyle};
+pub use drawing::Drawing;
+#[cfg(feature = "serde")]
+pub use file::{extract_svg_document, DrawingDoc, SVG_METADATA_ID};
 
 #[cfg(feature = "render")]
 pub use svg::import_svg;
@@ -256,6 +265,8 @@ pub struct Editor {
     dragging: Option<Gesture>,
     /// Solves are capped at [`DRAG_WORK`] (a drag update is being applied).
     capped: bool,
+    /// Undo steps pushed so far (a [`Drawing`] reads it to tell whether an edit made one).
+    steps: u64,
 }
 
 /// A drag gesture: what is dragged, and of which point.
@@ -582,9 +593,11 @@ impl Editor {
         if self.undo.len() > UNDO_LIMIT {
             self.undo.remove(0);
         }
+        self.steps = self.steps.wrapping_add(1);
         let change = self.apply_edit(f);
         if change.rejected {
             self.undo.pop();
+            self.steps = self.steps.wrapping_sub(1);
         }
         change
     }
@@ -802,6 +815,35 @@ impl Editor {
         let mut out = BezPath::new();
         for k in 0..self.pieces.len() {
             append(&mut out, self.piece_bezpath(k));
+        }
+        out
+    }
+
+    /// The path as one subpath, the pieces joined end to start, closed (`Z`) when the path
+    /// is closed — what an SVG or font outline holds. A piece without a curve leaves a gap
+    /// (the next piece starts a new subpath, and the path is not closed).
+    pub fn outline(&self) -> BezPath {
+        let mut out = BezPath::new();
+        let mut joined = false;
+        let mut whole = !self.pieces.is_empty();
+        for k in 0..self.pieces.len() {
+            let path = self.piece_bezpath(k);
+            if path.elements().is_empty() {
+                joined = false;
+                whole = false;
+                continue;
+            }
+            for (j, el) in path.elements().iter().enumerate() {
+                match el {
+                    kurbo::PathEl::MoveTo(_) if j == 0 && joined => {}
+                    kurbo::PathEl::ClosePath => {}
+                    el => out.push(*el),
+                }
+            }
+            joined = true;
+        }
+        if whole && self.doc.closed && self.doc.points.len() >= 3 {
+            out.close_path();
         }
         out
     }
