@@ -14,6 +14,7 @@ const PICK_RADIUS = 8;        // screen px around a point that grabs it (mouse a
 const TOUCH_RADIUS = 18;      // the same for a finger
 const INSERT_RADIUS = 10;     // screen px around the curve where Shift+click inserts
 const DOUBLE_CLICK_MS = 400;  // two presses on one point this close make a double click
+const TAP_SLOP = 10;          // screen px a finger may move and still tap
 const MIN_SCALE = 0.02, MAX_SCALE = 64;
 const WARNING_COLOR = "#e07000"; // a piece whose solve did not converge (its best curve)
 const STORAGE_KEY = "kappa-path-tool/drawing";
@@ -35,6 +36,7 @@ const ui = {
   sel: null,          // the selected point {contour, index}
   drag: null,         // a point drag {id, contour, index}
   pan: null,          // a pan drag {id, x, y, tx, ty}
+  tap: null,          // a finger down away from the points {id, s, p}: a tap until it moves
   pinch: null,        // two fingers {d0, m0, scale0, tx0, ty0}
   pointers: new Map(),// pointers down: id → screen position
   space: false,       // Space held: drags pan
@@ -315,6 +317,7 @@ canvas.addEventListener("pointerdown", (e) => {
     // A second finger: the gesture becomes a pinch (zoom and pan); a point drag ends.
     endDrag();
     ui.pan = null;
+    ui.tap = null;
     startPinch();
     return;
   }
@@ -364,7 +367,20 @@ canvas.addEventListener("pointerdown", (e) => {
       }
     }
   }
-  // A new point: at the end of the open contour being drawn, or the start of a new one.
+  if (e.pointerType === "touch") {
+    // A finger adds its point when it lifts without moving (a tap); a drag pans, and a
+    // second finger makes a pinch.
+    ui.tap = { id: e.pointerId, s, p };
+    return;
+  }
+  const at = addPoint(p);
+  ui.drag = { id: e.pointerId, ...at };
+  refresh();
+});
+
+// A new point at `p`: at the end of the open contour being drawn, or the start of a new one;
+// selected. Returns {contour, index}.
+function addPoint(p) {
   const active = engine.active();
   let k;
   if (active >= 0 && !engine.closed(active)) {
@@ -373,10 +389,10 @@ canvas.addEventListener("pointerdown", (e) => {
   } else {
     k = engine.startContour(p.x, p.y);
   }
-  select(k, engine.pointCount(k) - 1);
-  ui.drag = { id: e.pointerId, contour: k, index: engine.pointCount(k) - 1 };
-  refresh();
-});
+  const i = engine.pointCount(k) - 1;
+  select(k, i);
+  return { contour: k, index: i };
+}
 
 canvas.addEventListener("pointermove", (e) => {
   const s = screenPos(e);
@@ -384,6 +400,11 @@ canvas.addEventListener("pointermove", (e) => {
   if (ui.pinch) {
     if (ui.pointers.size >= 2) applyPinch();
     return;
+  }
+  if (ui.tap && ui.tap.id === e.pointerId &&
+      Math.hypot(s.x - ui.tap.s.x, s.y - ui.tap.s.y) > TAP_SLOP) {
+    ui.pan = { id: e.pointerId, x: ui.tap.s.x, y: ui.tap.s.y, tx: view.tx, ty: view.ty };
+    ui.tap = null;
   }
   if (ui.pan && ui.pan.id === e.pointerId) {
     view.tx = ui.pan.tx + s.x - ui.pan.x;
@@ -429,6 +450,14 @@ function pointerEnd(e) {
     return;
   }
   if (ui.drag && ui.drag.id === e.pointerId) endDrag();
+  if (ui.tap && ui.tap.id === e.pointerId) {
+    const { p } = ui.tap;
+    ui.tap = null;
+    if (e.type === "pointerup") {
+      addPoint(p);
+      refresh();
+    }
+  }
 }
 canvas.addEventListener("pointerup", pointerEnd);
 canvas.addEventListener("pointercancel", pointerEnd);
