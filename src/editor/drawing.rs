@@ -36,6 +36,8 @@ pub struct Drawing {
     scheme: Scheme,
     undo: Vec<Step>,
     redo: Vec<Step>,
+    /// The drag work of every contour ([`Editor::set_drag_work`]), if set.
+    drag_work: Option<usize>,
 }
 
 impl Drawing {
@@ -71,6 +73,24 @@ impl Drawing {
             ..Drawing::default()
         };
         (drawing, changes)
+    }
+
+    /// Sets the work a drag update's solve may do in every contour, present and future (see
+    /// [`Editor::set_drag_work`]).
+    pub fn set_drag_work(&mut self, work: usize) {
+        self.drag_work = Some(work);
+        for e in &mut self.contours {
+            e.set_drag_work(work);
+        }
+    }
+
+    /// A new contour's editor.
+    fn new_editor(&self) -> Editor {
+        let mut e = Editor::new(self.scheme);
+        if let Some(w) = self.drag_work {
+            e.set_drag_work(w);
+        }
+        e
     }
 
     /// The scheme.
@@ -152,7 +172,7 @@ impl Drawing {
         for e in &mut self.contours {
             e.end_drag();
         }
-        let mut e = Editor::new(self.scheme);
+        let mut e = self.new_editor();
         let change = e.add_point(p);
         let at = self.contours.len();
         self.contours.push(e);
@@ -192,7 +212,10 @@ impl Drawing {
     /// the first document's scheme as in [`Drawing::from_docs`]. Returns the changes, one
     /// per contour.
     pub fn replace(&mut self, docs: Vec<PathDoc>) -> Vec<Change> {
-        let (new, changes) = Drawing::from_docs(docs, self.scheme);
+        let (mut new, changes) = Drawing::from_docs(docs, self.scheme);
+        if let Some(w) = self.drag_work {
+            new.set_drag_work(w);
+        }
         let len = new.contours.len();
         let old = core::mem::replace(&mut self.contours, new.contours);
         self.scheme = new.scheme;

@@ -267,6 +267,8 @@ pub struct Editor {
     capped: bool,
     /// Undo steps pushed so far (a [`Drawing`] reads it to tell whether an edit made one).
     steps: u64,
+    /// The work a drag update's solve may do, if not [`DRAG_WORK`].
+    drag_work: Option<usize>,
 }
 
 /// A drag gesture: what is dragged, and of which point.
@@ -298,6 +300,13 @@ impl Editor {
         };
         let change = e.rebuild();
         (e, change)
+    }
+
+    /// Sets the work a drag update's solve may do, in input points × solver iterations
+    /// (default [`DRAG_WORK`]; at least 20 iterations are always allowed): lower it where an
+    /// iteration costs more than natively, as in WebAssembly.
+    pub fn set_drag_work(&mut self, work: usize) {
+        self.drag_work = Some(work);
     }
 
     /// The document.
@@ -726,7 +735,8 @@ impl Editor {
         // A drag update's solve is capped (see the module docs).
         let full = piece_options();
         let max_iterations = if self.capped {
-            (DRAG_WORK / pts.len().max(1)).clamp(DRAG_MIN_ITERATIONS, full.max_iterations)
+            let work = self.drag_work.unwrap_or(DRAG_WORK);
+            (work / pts.len().max(1)).clamp(DRAG_MIN_ITERATIONS, full.max_iterations)
         } else {
             full.max_iterations
         };

@@ -13,7 +13,7 @@ use std::cell::RefCell;
 use crate::{scheme_from_code, Session};
 
 thread_local! {
-    static SESSION: RefCell<Session> = RefCell::new(Session::default());
+    static SESSION: RefCell<Session> = RefCell::new(Session::new(kappa::Scheme::Kappa));
 }
 
 fn with<R>(f: impl FnOnce(&mut Session) -> R) -> R {

@@ -98,6 +98,12 @@ pub fn scheme_code(scheme: Scheme) -> u32 {
     }
 }
 
+/// The work a drag update's solve may do here ([`Drawing::set_drag_work`]): a third of the
+/// native [`kappa::editor::DRAG_WORK`] and a bit less, as a solver iteration costs about three times as much
+/// in WebAssembly in Chromium (measured by the browser test on 300-point drawings), so that
+/// a drag update with its drawing stays within a frame where the solve does not converge.
+pub const WEB_DRAG_WORK: usize = 4_000;
+
 /// The most points of the active contour that [`Session::fill_preview`] solves through.
 pub const PREVIEW_POINTS: usize = 6;
 
@@ -128,8 +134,10 @@ pub struct Session {
 impl Session {
     /// An empty session for `scheme`.
     pub fn new(scheme: Scheme) -> Session {
+        let mut drawing = Drawing::new(scheme);
+        drawing.set_drag_work(WEB_DRAG_WORK);
         Session {
-            drawing: Drawing::new(scheme),
+            drawing,
             ..Session::default()
         }
     }
@@ -593,7 +601,8 @@ impl Session {
         let changes = if undoable {
             self.drawing.replace(doc.contours)
         } else {
-            let (drawing, changes) = Drawing::from_docs(doc.contours, self.drawing.scheme());
+            let (mut drawing, changes) = Drawing::from_docs(doc.contours, self.drawing.scheme());
+            drawing.set_drag_work(WEB_DRAG_WORK);
             self.drawing = drawing;
             changes
         };

@@ -122,28 +122,45 @@ function draw() {
       ctx.setLineDash([]);
     }
   }
-  // Points, in screen pixels: the active contour's red, the others' grey.
+  // Points, in screen pixels: the active contour's red, the others' grey; one path per
+  // contour (a path per point costs a frame on a long drawing).
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+  ctx.lineWidth = 1.5;
   for (let k = 0; k < contours; k++) {
     const on = k === active;
-    engine.points(k).forEach((p, i) => {
+    const r = on ? 4.5 : 3.5;
+    ctx.beginPath();
+    engine.points(k).forEach((p) => {
       const q = toScreen(p);
-      const selected = ui.sel && ui.sel.contour === k && ui.sel.index === i;
-      const r = selected ? 6 : on ? 4.5 : 3.5;
-      ctx.beginPath();
-      if (p.corner) ctx.rect(q.x - r, q.y - r, 2 * r, 2 * r);
-      else ctx.arc(q.x, q.y, r, 0, 2 * Math.PI);
-      ctx.fillStyle = selected ? "#d11" : "#fff";
-      ctx.fill();
-      ctx.strokeStyle = on ? "#d11" : "#888";
-      ctx.lineWidth = 1.5;
-      ctx.stroke();
-      if (on && i === 0 && closeHint) {
-        ctx.beginPath();
-        ctx.arc(q.x, q.y, 9, 0, 2 * Math.PI);
-        ctx.stroke();
+      if (p.corner) {
+        ctx.rect(q.x - r, q.y - r, 2 * r, 2 * r);
+      } else {
+        ctx.moveTo(q.x + r, q.y);
+        ctx.arc(q.x, q.y, r, 0, 2 * Math.PI);
       }
     });
+    ctx.fillStyle = "#fff";
+    ctx.fill();
+    ctx.strokeStyle = on ? "#d11" : "#888";
+    ctx.stroke();
+  }
+  const sel = ui.sel && ui.sel.contour < contours ? engine.points(ui.sel.contour)[ui.sel.index] : null;
+  if (sel) {
+    const q = toScreen(sel);
+    ctx.beginPath();
+    if (sel.corner) ctx.rect(q.x - 6, q.y - 6, 12, 12);
+    else ctx.arc(q.x, q.y, 6, 0, 2 * Math.PI);
+    ctx.fillStyle = "#d11";
+    ctx.fill();
+    ctx.strokeStyle = "#d11";
+    ctx.stroke();
+  }
+  if (closeHint) {
+    const q = toScreen(engine.points(active)[0]);
+    ctx.beginPath();
+    ctx.arc(q.x, q.y, 9, 0, 2 * Math.PI);
+    ctx.strokeStyle = "#d11";
+    ctx.stroke();
   }
 }
 
