@@ -885,3 +885,138 @@ fn drawing_of_an_o_round_trips() {
     assert_eq!(d.scheme(), Scheme::EkCubic);
     assert_eq!(d.contour(0).unwrap().pieces(), 1);
 }
+
+#[derive(Clone, Debug)]
+enum DrawOp {
+    Start(f64, f64),
+    Edit(usize, Op),
+    DeleteContour(usize),
+    Clear,
+    Scheme(usize),
+    Undo,
+    Redo,
+}
+
+fn draw_op() -> impl Strategy<Value = DrawOp> {
+    prop_oneof![
+        2 => (0.0f64..200.0, 0.0f64..200.0).prop_map(|(x, y)| DrawOp::Start(x, y)),
+        12 => (0usize..4, op()).prop_map(|(k, o)| DrawOp::Edit(k, o)),
+        1 => (0usize..4).prop_map(DrawOp::DeleteContour),
+        1 => Just(DrawOp::Clear),
+        1 => (0usize..3).prop_map(DrawOp::Scheme),
+        2 => Just(DrawOp::Undo),
+        2 => Just(DrawOp::Redo),
+    ]
+}
+
+/// The points, closed flags and schemes of a drawing's contours.
+fn outline_of(d: &kappa::editor::Drawing) -> Vec<(Vec<EditPoint>, bool, Scheme)> {
+    d.docs()
+        .into_iter()
+        .map(|c| (c.points, c.closed, c.scheme))
+        .collect()
+}
+
+fn apply_draw(d: &mut kappa::editor::Drawing, op: &DrawOp) {
+    let schemes = [Scheme::Kappa, Scheme::EkCubic, Scheme::EkTrig];
+    match op {
+        DrawOp::Start(x, y) => {
+            d.start_contour(Point::new(*x, *y));
+        }
+        DrawOp::Edit(k, o) => {
+            let k = k % d.len().max(1);
+            let Some(e) = d.contour(k) else { return };
+            let n = e.doc().points.len().max(1);
+            let at = |i: usize| e.doc().points.get(i % n).map(|p| p.point());
+            match *o {
+                Op::Add(x, y) => {
+                    d.add_point(k, Point::new(x, y));
+                }
+                Op::Move(i, dx, dy) => {
+                    if let Some(p) = at(i) {
+                        d.move_point(k, i % n, p + kurbo::Vec2::new(dx, dy));
+                    }
+                }
+                Op::Drag(i, dx, dy) => {
+                    if let Some(p) = at(i) {
+                        d.drag_point(k, i % n, p + kurbo::Vec2::new(dx, dy));
+                    }
+                }
+                Op::DragShape(i, a) => {
+                    d.drag_shape(k, i % n, a);
+                }
+                Op::EndDrag => {
+                    d.end_drag();
+                }
+                Op::Insert(x, y) => {
+                    d.insert_on_curve(Point::new(x, y));
+                }
+                Op::Delete(i) => {
+                    d.delete_point(k, i % n);
+                }
+                Op::Shape(i, a) => {
+                    d.set_shape(k, i % n, a);
+                }
+                Op::Corner(i) => {
+                    d.toggle_corner(k, i % n);
+                }
+                Op::Close(c) => {
+                    d.set_closed(k, c);
+                }
+                Op::Scheme(s) => {
+                    d.set_scheme(schemes[s]);
+                }
+                Op::Undo => {
+                    d.undo();
+                }
+                Op::Redo => {
+                    d.redo();
+                }
+            }
+        }
+        DrawOp::DeleteContour(k) => {
+            d.delete_contour(k % d.len().max(1));
+        }
+        DrawOp::Clear => {
+            d.clear();
+        }
+        DrawOp::Scheme(s) => {
+            d.set_scheme(schemes[*s]);
+        }
+        DrawOp::Undo => {
+            d.undo();
+        }
+        DrawOp::Redo => {
+            d.redo();
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 40, ..ProptestConfig::default() })]
+
+    /// Random edits of a drawing of several contours: every contour's curve stays right,
+    /// undoing everything leaves an empty drawing, and redoing everything brings back the
+    /// same contours.
+    #[test]
+    fn random_drawing_edits_undo_and_redo_exactly(ops in prop::collection::vec(draw_op(), 1..40)) {
+        let mut d = kappa::editor::Drawing::new(Scheme::EkCubic);
+        for o in &ops {
+            apply_draw(&mut d, o);
+        }
+        d.end_drag();
+        for e in d.contours() {
+            check(e);
+        }
+        let end = outline_of(&d);
+        let mut steps = 0;
+        while d.undo() {
+            steps += 1;
+        }
+        prop_assert!(d.is_empty());
+        for _ in 0..steps {
+            prop_assert!(d.redo());
+        }
+        prop_assert_eq!(outline_of(&d), end);
+    }
+}

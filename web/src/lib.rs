@@ -98,10 +98,11 @@ pub fn scheme_code(scheme: Scheme) -> u32 {
     }
 }
 
-/// The work a drag update's solve may do here ([`Drawing::set_drag_work`]): a third of the
-/// native [`kappa::editor::DRAG_WORK`] and a bit less, as a solver iteration costs about three times as much
-/// in WebAssembly in Chromium (measured by the browser test on 300-point drawings), so that
-/// a drag update with its drawing stays within a frame where the solve does not converge.
+/// The work a drag update's solve may do here ([`Drawing::set_drag_work`]): about a quarter
+/// of the native [`kappa::editor::DRAG_WORK`], as a solver iteration costs three to four times
+/// as much in WebAssembly in Chromium (measured by the browser test on 300-point drawings),
+/// so that a drag update with its drawing stays within a frame where the solve does not
+/// converge. The end of the drag finishes the solve.
 pub const WEB_DRAG_WORK: usize = 4_000;
 
 /// The most points of the active contour that [`Session::fill_preview`] solves through.
