@@ -167,7 +167,9 @@ impl Drawing {
         out
     }
 
-    /// Starts a new contour with one point at `p`: its index and the change.
+    /// Starts a new contour with one point at `p`: its index and the change. A point that is
+    /// not finite starts nothing: the change is [`Change::rejected`] and the index is
+    /// [`Drawing::len`], one past the last contour.
     pub fn start_contour(&mut self, p: Point) -> (usize, Change) {
         for e in &mut self.contours {
             e.end_drag();
@@ -175,6 +177,9 @@ impl Drawing {
         let mut e = self.new_editor();
         let change = e.add_point(p);
         let at = self.contours.len();
+        if change.rejected {
+            return (at, change);
+        }
         self.contours.push(e);
         self.push(Step::Splice {
             at,
@@ -521,6 +526,9 @@ mod tests {
         assert_eq!(d.outline(), before);
         assert!(d.redo());
         assert_eq!(d.contour(1).unwrap().doc().points[2].x, p.x + 9.0);
+        // A contour is not started at a point that is not finite.
+        let (k, c) = d.start_contour(Point::new(f64::NAN, 0.0));
+        assert!(c.rejected && k == d.len() && d.len() == 2);
         // Out-of-range edits change nothing and record nothing.
         assert_eq!(d.move_point(7, 0, p), Change::default());
         assert_eq!(d.move_point(0, 70, p), Change::default());
