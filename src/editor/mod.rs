@@ -35,7 +35,7 @@ mod svg;
 pub use comb::{Comb, CombStyle};
 pub use drawing::Drawing;
 #[cfg(feature = "serde")]
-pub use file::{extract_svg_document, DrawingDoc, SVG_METADATA_ID};
+pub use file::{extract_svg_document, import_svg_paths, DrawingDoc, SVG_METADATA_ID};
 
 #[cfg(feature = "render")]
 pub use svg::import_svg;

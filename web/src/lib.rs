@@ -16,7 +16,9 @@
 // buffer the session owns and the page writes).
 #![deny(unsafe_code)]
 
-use kappa::editor::{extract_svg_document, Change, CombStyle, Drawing, DrawingDoc, Editor};
+use kappa::editor::{
+    extract_svg_document, import_svg_paths, Change, CombStyle, Drawing, DrawingDoc, Editor,
+};
 use kappa::{Scheme, Shape, SolveOptions, Solver};
 use kurbo::{BezPath, PathEl, Point};
 
@@ -580,14 +582,16 @@ impl Session {
     }
 
     /// Opens the text in the input buffer ([`Session::input_buffer`]): a drawing file, a
-    /// single path's file, or an SVG exported with its file. It replaces the drawing as one
+    /// single path's file, an SVG exported with its file, or another SVG, whose paths'
+    /// vertices become the points ([`import_svg_paths`]). It replaces the drawing as one
     /// undo step (with `undoable`; else with an empty history, as for a drawing restored at
     /// start-up), with no active contour. Returns `Ok` with the number of pieces that failed
     /// to solve, or the error (the drawing is then unchanged).
     pub fn open_input(&mut self, undoable: bool) -> Result<u32, kappa::Error> {
         let text = String::from_utf8_lossy(&self.input).into_owned();
         let doc = if text.trim_start().starts_with('<') {
-            extract_svg_document(&text)
+            // An SVG exported here holds its drawing; one from elsewhere gives its vertices.
+            extract_svg_document(&text).or_else(|_| import_svg_paths(&text, self.drawing.scheme()))
         } else {
             DrawingDoc::from_json(&text)
         };
@@ -773,6 +777,13 @@ mod tests {
         assert!(s.open_input(true).is_err());
         assert!(s.last_error() > 0);
         assert_eq!(s.drawing().len(), 2);
+        // An SVG from elsewhere: its path's vertices.
+        let other = b"<svg><path d=\"M0 0 L100 0 L100 100 Z\"/></svg>";
+        s.input_buffer(other.len()).copy_from_slice(other);
+        assert_eq!(s.open_input(true).unwrap(), 0);
+        assert_eq!(s.drawing().len(), 1);
+        assert!(s.drawing().contour(0).unwrap().doc().closed);
+        assert!(s.undo());
         s.input_buffer(svg.len()).copy_from_slice(&svg);
         assert_eq!(s.open_input(true).unwrap(), 0);
         assert_eq!(s.drawing().len(), 2);

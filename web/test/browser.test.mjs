@@ -810,6 +810,22 @@ test("save, reload, open: the drawing is kept; SVG export is closed and opens ag
   assert.equal(await page.evaluate(() => window.kappa.contours()), 1);
   await page.keyboard.press("Control+z");
   assert.equal(await page.evaluate(() => window.kappa.contours()), 2);
+  // An SVG drawn elsewhere, dropped on the page: its paths' vertices become the points.
+  const foreign = '<svg xmlns="http://www.w3.org/2000/svg"><path d="M100 100 C150 50 250 50 300 100 ' +
+    'L300 300 L100 300 Z M150 150 h100 v100 h-100 z"/></svg>';
+  await page.evaluate((text) => {
+    const data = new DataTransfer();
+    data.items.add(new File([text], "other.svg", { type: "image/svg+xml" }));
+    window.dispatchEvent(new DragEvent("drop", { dataTransfer: data, bubbles: true, cancelable: true }));
+  }, foreign);
+  await page.waitForFunction(() => window.kappa.contours() === 2 && window.kappa.points(0).length === 4);
+  const imported = await page.evaluate(() => [0, 1].map((k) => window.kappa.points(k).map((p) => [p.x, p.y])));
+  assert.deepEqual(imported, [[[100, 100], [300, 100], [300, 300], [100, 300]],
+    [[150, 150], [250, 150], [250, 250], [150, 250]]]);
+  await checkCurve(DRAWN_TOL["ek-cubic"]);
+  await page.keyboard.press("Control+z");
+  assert.deepEqual(await page.evaluate(() => JSON.parse(window.kappa.save()).contours.map((c) => c.points)),
+    doc.contours.map((c) => c.points));
   await page.evaluate(() => window.kappa.setView({ scale: 1, tx: 0, ty: 0 }));
   assert.deepEqual(page.problems, []);
 });
