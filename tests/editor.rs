@@ -899,8 +899,14 @@ enum DrawOp {
 
 fn draw_op() -> impl Strategy<Value = DrawOp> {
     prop_oneof![
-        2 => (0.0f64..200.0, 0.0f64..200.0).prop_map(|(x, y)| DrawOp::Start(x, y)),
+        4 => (0.0f64..200.0, 0.0f64..200.0).prop_map(|(x, y)| DrawOp::Start(x, y)),
         12 => (0usize..4, op()).prop_map(|(k, o)| DrawOp::Edit(k, o)),
+        8 => (0usize..4, 0.0f64..200.0, 0.0f64..200.0)
+            .prop_map(|(k, x, y)| DrawOp::Edit(k, Op::Add(x, y))),
+        // Hostile input: refused, nothing recorded.
+        1 => Just(DrawOp::Start(f64::NAN, 1.0)),
+        1 => (0usize..4).prop_map(|k| DrawOp::Edit(k, Op::Add(f64::INFINITY, 0.0))),
+        1 => (0usize..4, 0usize..20).prop_map(|(k, i)| DrawOp::Edit(k, Op::Move(i, f64::NAN, 0.0))),
         1 => (0usize..4).prop_map(DrawOp::DeleteContour),
         1 => Just(DrawOp::Clear),
         1 => (0usize..3).prop_map(DrawOp::Scheme),
@@ -993,13 +999,13 @@ fn apply_draw(d: &mut kappa::editor::Drawing, op: &DrawOp) {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 40, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 60, ..ProptestConfig::default() })]
 
     /// Random edits of a drawing of several contours: every contour's curve stays right,
     /// undoing everything leaves an empty drawing, and redoing everything brings back the
     /// same contours.
     #[test]
-    fn random_drawing_edits_undo_and_redo_exactly(ops in prop::collection::vec(draw_op(), 1..40)) {
+    fn random_drawing_edits_undo_and_redo_exactly(ops in prop::collection::vec(draw_op(), 1..60)) {
         let mut d = kappa::editor::Drawing::new(Scheme::EkCubic);
         for o in &ops {
             apply_draw(&mut d, o);
