@@ -478,6 +478,13 @@ impl Spline<Point> {
     /// `samples_per_segment` teeth per segment, uniform in `t` with both ends, each from the
     /// curve point `p` to `p − scale · κ · n` (see [`crate::analysis::curvature_comb`]).
     pub fn curvature_comb(&self, scale: f64, samples_per_segment: usize) -> BezPath {
+        crate::analysis::comb_from_samples(self.curvature_samples(samples_per_segment), scale)
+    }
+
+    /// Samples `(p, k)` of the exact curve, `samples_per_segment` (at least 2) per segment
+    /// evenly in each segment's parameter, ends included: the point and the curvature vector
+    /// `κ n` (`n` the left unit normal; zero where the curve stalls).
+    pub fn curvature_samples(&self, samples_per_segment: usize) -> Vec<(Point, kurbo::Vec2)> {
         let m = samples_per_segment.max(2);
         let mut samples = Vec::with_capacity(m * self.segments.len());
         for seg in &self.segments {
@@ -500,7 +507,7 @@ impl Spline<Point> {
                 samples.push((p, k));
             }
         }
-        crate::analysis::comb_from_samples(samples, scale)
+        samples
     }
 
     /// The largest |κ| of the curve: at the peak parameters, the segment ends, and 64

@@ -828,3 +828,201 @@ proptest! {
         }
     }
 }
+
+/// A drawing of two contours (an `o`): one history over both, Clear undone, and its file
+/// (JSON, and inside an SVG) reopens the same drawing; a file of one path from before
+/// drawings still opens.
+#[cfg(feature = "serde")]
+#[test]
+fn drawing_of_an_o_round_trips() {
+    use kappa::editor::{extract_svg_document, Drawing, DrawingDoc};
+    let ring = |r: f64| -> Vec<Point> {
+        (0..8)
+            .map(|i| {
+                let th = f64::from(i) / 8.0 * std::f64::consts::TAU;
+                Point::new(300.0 + r * th.cos(), 300.0 + 1.2 * r * th.sin())
+            })
+            .collect()
+    };
+    let mut d = Drawing::new(Scheme::EkCubic);
+    for r in [150.0, 90.0] {
+        let pts = ring(r);
+        let (k, _) = d.start_contour(pts[0]);
+        for &p in &pts[1..] {
+            d.add_point(k, p);
+        }
+        d.set_closed(k, true);
+    }
+    d.toggle_corner(1, 0);
+    assert!(d.errors().is_empty());
+    let doc = DrawingDoc::of(&d);
+    assert!(d.clear() && d.is_empty());
+    assert!(d.undo());
+    assert_eq!(DrawingDoc::of(&d), doc);
+    let svg = d.to_svg_with_document(600.0, 600.0, true);
+    // Each closed contour is one subpath ending in Z, the cornered one too.
+    let path = svg
+        .split("<path d=\"")
+        .nth(1)
+        .unwrap()
+        .split('"')
+        .next()
+        .unwrap();
+    assert_eq!(path.matches('M').count(), 2);
+    assert_eq!(path.matches('Z').count(), 2);
+    let back = extract_svg_document(&svg).unwrap();
+    assert_eq!(back, doc);
+    let (again, changes) = Drawing::from_docs(back.contours, Scheme::Kappa);
+    assert_eq!(again.len(), 2);
+    assert!(changes.iter().all(|c| c.errors.is_empty()));
+    // One path's document, as saved before drawings had several contours.
+    let one = r#"{"points":[{"x":0.0,"y":0.0,"shape":0.8,"corner":false},
+        {"x":100.0,"y":40.0,"shape":0.8,"corner":false},{"x":200.0,"y":0.0,"shape":0.8,
+        "corner":false}],"closed":false,"scheme":"ek-cubic"}"#;
+    let old = DrawingDoc::from_json(one).unwrap();
+    let (d, _) = Drawing::from_docs(old.contours, Scheme::Kappa);
+    assert_eq!(d.len(), 1);
+    assert_eq!(d.scheme(), Scheme::EkCubic);
+    assert_eq!(d.contour(0).unwrap().pieces(), 1);
+}
+
+#[derive(Clone, Debug)]
+enum DrawOp {
+    Start(f64, f64),
+    Edit(usize, Op),
+    DeleteContour(usize),
+    Clear,
+    Scheme(usize),
+    Undo,
+    Redo,
+}
+
+fn draw_op() -> impl Strategy<Value = DrawOp> {
+    prop_oneof![
+        4 => (0.0f64..200.0, 0.0f64..200.0).prop_map(|(x, y)| DrawOp::Start(x, y)),
+        12 => (0usize..4, op()).prop_map(|(k, o)| DrawOp::Edit(k, o)),
+        8 => (0usize..4, 0.0f64..200.0, 0.0f64..200.0)
+            .prop_map(|(k, x, y)| DrawOp::Edit(k, Op::Add(x, y))),
+        // Hostile input: refused, nothing recorded.
+        1 => Just(DrawOp::Start(f64::NAN, 1.0)),
+        1 => (0usize..4).prop_map(|k| DrawOp::Edit(k, Op::Add(f64::INFINITY, 0.0))),
+        1 => (0usize..4, 0usize..20).prop_map(|(k, i)| DrawOp::Edit(k, Op::Move(i, f64::NAN, 0.0))),
+        1 => (0usize..4).prop_map(DrawOp::DeleteContour),
+        1 => Just(DrawOp::Clear),
+        1 => (0usize..3).prop_map(DrawOp::Scheme),
+        2 => Just(DrawOp::Undo),
+        2 => Just(DrawOp::Redo),
+    ]
+}
+
+/// The points, closed flags and schemes of a drawing's contours.
+fn outline_of(d: &kappa::editor::Drawing) -> Vec<(Vec<EditPoint>, bool, Scheme)> {
+    d.docs()
+        .into_iter()
+        .map(|c| (c.points, c.closed, c.scheme))
+        .collect()
+}
+
+fn apply_draw(d: &mut kappa::editor::Drawing, op: &DrawOp) {
+    let schemes = [Scheme::Kappa, Scheme::EkCubic, Scheme::EkTrig];
+    match op {
+        DrawOp::Start(x, y) => {
+            d.start_contour(Point::new(*x, *y));
+        }
+        DrawOp::Edit(k, o) => {
+            let k = k % d.len().max(1);
+            let Some(e) = d.contour(k) else { return };
+            let n = e.doc().points.len().max(1);
+            let at = |i: usize| e.doc().points.get(i % n).map(|p| p.point());
+            match *o {
+                Op::Add(x, y) => {
+                    d.add_point(k, Point::new(x, y));
+                }
+                Op::Move(i, dx, dy) => {
+                    if let Some(p) = at(i) {
+                        d.move_point(k, i % n, p + kurbo::Vec2::new(dx, dy));
+                    }
+                }
+                Op::Drag(i, dx, dy) => {
+                    if let Some(p) = at(i) {
+                        d.drag_point(k, i % n, p + kurbo::Vec2::new(dx, dy));
+                    }
+                }
+                Op::DragShape(i, a) => {
+                    d.drag_shape(k, i % n, a);
+                }
+                Op::EndDrag => {
+                    d.end_drag();
+                }
+                Op::Insert(x, y) => {
+                    d.insert_on_curve(Point::new(x, y));
+                }
+                Op::Delete(i) => {
+                    d.delete_point(k, i % n);
+                }
+                Op::Shape(i, a) => {
+                    d.set_shape(k, i % n, a);
+                }
+                Op::Corner(i) => {
+                    d.toggle_corner(k, i % n);
+                }
+                Op::Close(c) => {
+                    d.set_closed(k, c);
+                }
+                Op::Scheme(s) => {
+                    d.set_scheme(schemes[s]);
+                }
+                Op::Undo => {
+                    d.undo();
+                }
+                Op::Redo => {
+                    d.redo();
+                }
+            }
+        }
+        DrawOp::DeleteContour(k) => {
+            d.delete_contour(k % d.len().max(1));
+        }
+        DrawOp::Clear => {
+            d.clear();
+        }
+        DrawOp::Scheme(s) => {
+            d.set_scheme(schemes[*s]);
+        }
+        DrawOp::Undo => {
+            d.undo();
+        }
+        DrawOp::Redo => {
+            d.redo();
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 60, ..ProptestConfig::default() })]
+
+    /// Random edits of a drawing of several contours: every contour's curve stays right,
+    /// undoing everything leaves an empty drawing, and redoing everything brings back the
+    /// same contours.
+    #[test]
+    fn random_drawing_edits_undo_and_redo_exactly(ops in prop::collection::vec(draw_op(), 1..60)) {
+        let mut d = kappa::editor::Drawing::new(Scheme::EkCubic);
+        for o in &ops {
+            apply_draw(&mut d, o);
+        }
+        d.end_drag();
+        for e in d.contours() {
+            check(e);
+        }
+        let end = outline_of(&d);
+        let mut steps = 0;
+        while d.undo() {
+            steps += 1;
+        }
+        prop_assert!(d.is_empty());
+        for _ in 0..steps {
+            prop_assert!(d.redo());
+        }
+        prop_assert_eq!(outline_of(&d), end);
+    }
+}

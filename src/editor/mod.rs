@@ -46,8 +46,17 @@
 //! assert_eq!(editor.doc().points[1].point(), Point::new(100.0, 20.0));
 //! ```
 
+mod comb;
+mod drawing;
+#[cfg(feature = "serde")]
+mod file;
 #[cfg(feature = "render")]
 mod svg;
+
+pub use comb::{Comb, CombStyle};
+pub use drawing::Drawing;
+#[cfg(feature = "serde")]
+pub use file::{extract_svg_document, import_svg_paths, DrawingDoc, SVG_METADATA_ID};
 
 #[cfg(feature = "render")]
 pub use svg::import_svg;
@@ -302,6 +311,10 @@ pub struct Editor {
     dragging: Option<Gesture>,
     /// Solves are capped at [`DRAG_WORK`] (a drag update is being applied).
     capped: bool,
+    /// Undo steps pushed so far (a [`Drawing`] reads it to tell whether an edit made one).
+    steps: u64,
+    /// The work a drag update's solve may do, if not [`DRAG_WORK`].
+    drag_work: Option<usize>,
 }
 
 /// A drag gesture: what is dragged, and of which point.
@@ -333,6 +346,13 @@ impl Editor {
         };
         let change = e.rebuild();
         (e, change)
+    }
+
+    /// Sets the work a drag update's solve may do, in input points × solver iterations
+    /// (default [`DRAG_WORK`]; at least 20 iterations are always allowed): lower it where an
+    /// iteration costs more than natively, as in WebAssembly.
+    pub fn set_drag_work(&mut self, work: usize) {
+        self.drag_work = Some(work);
     }
 
     /// The document.
@@ -628,9 +648,11 @@ impl Editor {
         if self.undo.len() > UNDO_LIMIT {
             self.undo.remove(0);
         }
+        self.steps = self.steps.wrapping_add(1);
         let change = self.apply_edit(f);
         if change.rejected {
             self.undo.pop();
+            self.steps = self.steps.wrapping_sub(1);
         }
         change
     }
@@ -759,7 +781,8 @@ impl Editor {
         // A drag update's solve is capped (see the module docs).
         let full = piece_options();
         let max_iterations = if self.capped {
-            (DRAG_WORK / pts.len().max(1)).clamp(DRAG_MIN_ITERATIONS, full.max_iterations)
+            let work = self.drag_work.unwrap_or(DRAG_WORK);
+            (work / pts.len().max(1)).clamp(DRAG_MIN_ITERATIONS, full.max_iterations)
         } else {
             full.max_iterations
         };
@@ -848,6 +871,35 @@ impl Editor {
         let mut out = BezPath::new();
         for k in 0..self.pieces.len() {
             append(&mut out, self.piece_bezpath(k));
+        }
+        out
+    }
+
+    /// The path as one subpath, the pieces joined end to start, closed (`Z`) when the path
+    /// is closed — what an SVG or font outline holds. A piece without a curve leaves a gap
+    /// (the next piece starts a new subpath, and the path is not closed).
+    pub fn outline(&self) -> BezPath {
+        let mut out = BezPath::new();
+        let mut joined = false;
+        let mut whole = !self.pieces.is_empty();
+        for k in 0..self.pieces.len() {
+            let path = self.piece_bezpath(k);
+            if path.elements().is_empty() {
+                joined = false;
+                whole = false;
+                continue;
+            }
+            for (j, el) in path.elements().iter().enumerate() {
+                match el {
+                    kurbo::PathEl::MoveTo(_) if j == 0 && joined => {}
+                    kurbo::PathEl::ClosePath => {}
+                    el => out.push(*el),
+                }
+            }
+            joined = true;
+        }
+        if whole && self.doc.closed && self.doc.points.len() >= 3 {
+            out.close_path();
         }
         out
     }

@@ -29,8 +29,12 @@ fn main() {
             s.add_point(x, y);
         }
         s.set_closed(true);
-        let scale = 50.0 / s.max_curvature();
-        let (bx, by) = (s.editor().doc().points[30].x, s.editor().doc().points[30].y);
+        s.fill_comb(50.0, 0.75, 3.0, 8, 0.0);
+        let scale = s.comb_scale();
+        let (bx, by) = (
+            s.editor().unwrap().doc().points[30].x,
+            s.editor().unwrap().doc().points[30].y,
+        );
         let mut times = Vec::with_capacity(UPDATES);
         let mut iterations = 0;
         let mut errors = 0;
@@ -40,7 +44,7 @@ fn main() {
             let t0 = Instant::now();
             errors += s.drag_point(30, bx + off, by - off);
             s.fill_path();
-            s.fill_comb(scale, 8);
+            s.fill_comb(50.0, 0.75, 3.0, 8, scale);
             times.push(t0.elapsed().as_secs_f64() * 1e3);
             iterations += s.last_change().iterations;
         }
@@ -55,7 +59,7 @@ fn main() {
             let t1 = Instant::now();
             s.fill_path();
             let t2 = Instant::now();
-            s.fill_comb(scale, 8);
+            s.fill_comb(50.0, 0.75, 3.0, 8, scale);
             let t3 = Instant::now();
             part[0] += (t1 - t0).as_secs_f64() * 1e3 / UPDATES as f64;
             part[1] += (t2 - t1).as_secs_f64() * 1e3 / UPDATES as f64;

@@ -1,6 +1,6 @@
 //! The kappa path-tool engine for the browser.
 //!
-//! [`Session`] wraps a [`kappa::editor::Editor`] and writes everything a page draws or asks
+//! [`Session`] wraps a [`kappa::editor::Drawing`] (several contours, one history) and writes everything a page draws or asks
 //! for into flat buffers: `f64` arrays for points, paths, combs and curve samples, UTF-8
 //! bytes for text. The [`ffi`] module exports it as plain C-ABI functions of a
 //! `wasm32-unknown-unknown` module; the page's JavaScript calls them and reads the buffers
@@ -12,11 +12,14 @@
 
 #![deny(missing_docs)]
 // `#[no_mangle]` counts as unsafe code; it is allowed in `ffi` only, which has no unsafe
-// blocks (results leave through buffers the page reads, nothing comes in by pointer).
+// blocks (results leave through buffers the page reads; a file to open comes in through a
+// buffer the session owns and the page writes).
 #![deny(unsafe_code)]
 
-use kappa::editor::{Change, Editor};
-use kappa::Scheme;
+use kappa::editor::{
+    extract_svg_document, import_svg_paths, Change, CombStyle, Drawing, DrawingDoc, Editor,
+};
+use kappa::{Scheme, Shape, SolveOptions, Solver};
 use kurbo::{BezPath, PathEl, Point};
 
 #[allow(unsafe_code)]
@@ -97,33 +100,70 @@ pub fn scheme_code(scheme: Scheme) -> u32 {
     }
 }
 
-/// An editor with the output buffers a page reads (see the module docs).
+/// The work a drag update's solve may do here ([`Drawing::set_drag_work`]): about a quarter
+/// of the native [`kappa::editor::DRAG_WORK`], as a solver iteration costs three to four times
+/// as much in WebAssembly in Chromium (measured by the browser test on 300-point drawings),
+/// so that a drag update with its drawing stays within a frame where the solve does not
+/// converge. The end of the drag finishes the solve.
+pub const WEB_DRAG_WORK: usize = 4_000;
+
+/// The most points of the active contour that [`Session::fill_preview`] solves through.
+pub const PREVIEW_POINTS: usize = 6;
+
+/// A drawing with the output buffers a page reads (see the module docs). Point edits go to
+/// the *active* contour ([`Session::active`]); a click away from the drawing starts a new
+/// one ([`Session::start_contour`]).
 #[derive(Debug, Default)]
 pub struct Session {
-    editor: Editor,
+    drawing: Drawing,
+    active: Option<usize>,
     last: Change,
+    /// Errors of the last edit that are not a solve's (a file that did not open).
+    message: Option<String>,
     /// Numbers of the last query (points, piece info, evaluations, hits).
     nums: Vec<f64>,
     /// The encoded path.
     path: Vec<f64>,
     /// The encoded curvature comb.
     comb: Vec<f64>,
-    /// Text of the last query (SVG export, error message).
+    /// The scale of the last comb (drawing units per unit of curvature).
+    comb_scale: f64,
+    /// Text of the last query (SVG export, saved file, error message).
     bytes: Vec<u8>,
+    /// Text the page writes in (a file to open), see [`Session::input_buffer`].
+    input: Vec<u8>,
 }
 
 impl Session {
     /// An empty session for `scheme`.
     pub fn new(scheme: Scheme) -> Session {
+        let mut drawing = Drawing::new(scheme);
+        drawing.set_drag_work(WEB_DRAG_WORK);
         Session {
-            editor: Editor::new(scheme),
+            drawing,
             ..Session::default()
         }
     }
 
-    /// The editor.
-    pub fn editor(&self) -> &Editor {
-        &self.editor
+    /// The drawing.
+    pub fn drawing(&self) -> &Drawing {
+        &self.drawing
+    }
+
+    /// The active contour's editor, if there is one.
+    pub fn editor(&self) -> Option<&Editor> {
+        self.active.and_then(|k| self.drawing.contour(k))
+    }
+
+    /// The active contour (`None` without contours, or after [`Session::set_active`] with an
+    /// out-of-range index: the next click starts a new contour).
+    pub fn active(&self) -> Option<usize> {
+        self.active.filter(|&k| k < self.drawing.len())
+    }
+
+    /// Makes contour `k` the active one (`None`, or an index out of range, for none).
+    pub fn set_active(&mut self, k: Option<usize>) {
+        self.active = k.filter(|&k| k < self.drawing.len());
     }
 
     /// What the last edit did.
@@ -134,103 +174,157 @@ impl Session {
     /// Records `change` as the last one and returns its number of errors.
     fn record(&mut self, change: Change) -> u32 {
         self.last = change;
+        self.message = None;
         self.last.errors.len() as u32
     }
 
-    /// Appends a point; returns the number of pieces that failed to solve.
-    pub fn add_point(&mut self, x: f64, y: f64) -> u32 {
-        let c = self.editor.add_point(Point::new(x, y));
-        self.record(c)
+    /// The active contour's index for an edit (`usize::MAX`, which changes nothing, without
+    /// one).
+    fn k(&self) -> usize {
+        self.active().unwrap_or(usize::MAX)
     }
 
-    /// Inserts a point on the curve nearest to `(x, y)`; its index, or `None` if there is
-    /// no curve.
+    /// Starts a new contour with a point at `(x, y)` and makes it active; its index.
+    pub fn start_contour(&mut self, x: f64, y: f64) -> usize {
+        let (k, c) = self.drawing.start_contour(Point::new(x, y));
+        self.active = Some(k);
+        self.record(c);
+        k
+    }
+
+    /// Deletes contour `k`; whether there was one. No contour is active afterwards.
+    pub fn delete_contour(&mut self, k: usize) -> bool {
+        let done = self.drawing.delete_contour(k);
+        self.active = None;
+        self.record(Change::default());
+        done
+    }
+
+    /// Removes every contour (one undo step); whether there was any.
+    pub fn clear(&mut self) -> bool {
+        self.active = None;
+        self.record(Change::default());
+        self.drawing.clear()
+    }
+
+    /// Appends a point to the active contour, or starts a contour without one; returns the
+    /// number of pieces that failed to solve.
+    pub fn add_point(&mut self, x: f64, y: f64) -> u32 {
+        match self.active() {
+            Some(k) => {
+                let c = self.drawing.add_point(k, Point::new(x, y));
+                self.record(c)
+            }
+            None => {
+                self.start_contour(x, y);
+                self.last.errors.len() as u32
+            }
+        }
+    }
+
+    /// Inserts a point on the curve nearest to `(x, y)` (in any contour, which becomes the
+    /// active one); its index, or `None` if there is no curve.
     pub fn insert_point(&mut self, x: f64, y: f64) -> Option<usize> {
-        let (at, c) = self.editor.insert_on_curve(Point::new(x, y))?;
+        let (k, at, c) = self.drawing.insert_on_curve(Point::new(x, y))?;
+        self.active = Some(k);
         self.record(c);
         Some(at)
     }
 
-    /// Moves point `i` (its own undo step).
+    /// Moves point `i` of the active contour (its own undo step).
     pub fn move_point(&mut self, i: usize, x: f64, y: f64) -> u32 {
-        let c = self.editor.move_point(i, Point::new(x, y));
+        let c = self.drawing.move_point(self.k(), i, Point::new(x, y));
         self.record(c)
     }
 
-    /// Moves point `i` within a drag gesture (one undo step until [`Session::end_drag`]).
+    /// Moves point `i` of the active contour within a drag gesture (one undo step until
+    /// [`Session::end_drag`]).
     pub fn drag_point(&mut self, i: usize, x: f64, y: f64) -> u32 {
-        let c = self.editor.drag_point(i, Point::new(x, y));
+        let c = self.drawing.drag_point(self.k(), i, Point::new(x, y));
         self.record(c)
     }
 
     /// Ends the drag gesture (pieces its capped updates left unconverged are solved with
     /// the full budget); returns the number of pieces that failed to solve.
     pub fn end_drag(&mut self) -> u32 {
-        let c = self.editor.end_drag();
+        let c = self.drawing.end_drag();
         if !c.resolved.is_empty() {
             self.last = c;
         }
-        self.last.errors = self.editor.errors();
+        self.last.errors = self.active_errors();
         self.last.errors.len() as u32
     }
 
-    /// Deletes point `i`.
+    /// The errors of the active contour's pieces.
+    fn active_errors(&self) -> Vec<(usize, kappa::Error)> {
+        self.editor().map(|e| e.errors()).unwrap_or_default()
+    }
+
+    /// Deletes point `i` of the active contour.
     pub fn delete_point(&mut self, i: usize) -> u32 {
-        let c = self.editor.delete_point(i);
+        let c = self.drawing.delete_point(self.k(), i);
         self.record(c)
     }
 
-    /// Sets the shape of point `i`.
+    /// Sets the shape of point `i` of the active contour.
     pub fn set_shape(&mut self, i: usize, a: f64) -> u32 {
-        let c = self.editor.set_shape(i, a);
+        let c = self.drawing.set_shape(self.k(), i, a);
         self.record(c)
     }
 
-    /// Sets the shape of point `i` within a slider drag (one undo step until
-    /// [`Session::end_drag`]).
+    /// Sets the shape of point `i` of the active contour within a slider drag (one undo
+    /// step until [`Session::end_drag`]).
     pub fn drag_shape(&mut self, i: usize, a: f64) -> u32 {
-        let c = self.editor.drag_shape(i, a);
+        let c = self.drawing.drag_shape(self.k(), i, a);
         self.record(c)
     }
 
-    /// Toggles the corner flag of point `i`.
+    /// Toggles the corner flag of point `i` of the active contour.
     pub fn toggle_corner(&mut self, i: usize) -> u32 {
-        let c = self.editor.toggle_corner(i);
+        let c = self.drawing.toggle_corner(self.k(), i);
         self.record(c)
     }
 
-    /// Opens or closes the path.
+    /// Opens or closes the active contour.
     pub fn set_closed(&mut self, closed: bool) -> u32 {
-        let c = self.editor.set_closed(closed);
+        let c = self.drawing.set_closed(self.k(), closed);
         self.record(c)
     }
 
-    /// Switches the scheme.
+    /// Switches the scheme of every contour.
     pub fn set_scheme(&mut self, scheme: Scheme) -> u32 {
-        let c = self.editor.set_scheme(scheme);
+        let c = self.drawing.set_scheme(scheme);
         self.record(c)
     }
 
-    /// Undoes the last edit; whether there was one. The errors of the restored state are
+    /// Undoes the last step; whether there was one. The errors of the restored state are
     /// the last change's (an unconverged curve is flagged again).
     pub fn undo(&mut self) -> bool {
-        let done = self.editor.undo();
+        let done = self.drawing.undo();
         self.restored();
         done
     }
 
-    /// Redoes the last undone edit; whether there was one (errors as for
+    /// Redoes the last undone step; whether there was one (errors as for
     /// [`Session::undo`]).
     pub fn redo(&mut self) -> bool {
-        let done = self.editor.redo();
+        let done = self.drawing.redo();
         self.restored();
         done
     }
 
-    /// After an undo or redo: the last change is the restored state's errors.
+    /// After an undo or redo: the active contour is kept if it still exists, and the last
+    /// change is the errors of the drawing.
     fn restored(&mut self) {
+        self.active = self.active();
+        self.message = None;
         self.last = Change {
-            errors: self.editor.errors(),
+            errors: self
+                .drawing
+                .errors()
+                .into_iter()
+                .map(|(_, j, e)| (j, e))
+                .collect(),
             ..Change::default()
         };
     }
@@ -250,33 +344,48 @@ impl Session {
         &self.comb
     }
 
-    /// The text of the last [`Session::export_svg`] or [`Session::last_error`].
+    /// The text of the last [`Session::export_svg`], [`Session::save`] or
+    /// [`Session::last_error`].
     pub fn bytes(&self) -> &[u8] {
         &self.bytes
     }
 
-    /// Writes `x, y, shape, corner (0 or 1)` of every point to the numbers; their count.
-    pub fn fill_points(&mut self) -> usize {
+    /// A buffer of `len` bytes for the page to write a file into (then
+    /// [`Session::open_input`]); valid until the next call.
+    pub fn input_buffer(&mut self, len: usize) -> &mut [u8] {
+        self.input.clear();
+        self.input.resize(len, 0);
+        &mut self.input
+    }
+
+    /// Writes `x, y, shape, corner (0 or 1)` of every point of contour `k` to the numbers;
+    /// their count (0 for an out-of-range `k`).
+    pub fn fill_points(&mut self, k: usize) -> usize {
         self.nums.clear();
-        for p in &self.editor.doc().points {
-            self.nums
-                .extend([p.x, p.y, p.shape, if p.corner { 1.0 } else { 0.0 }]);
+        if let Some(e) = self.drawing.contour(k) {
+            for p in &e.doc().points {
+                self.nums
+                    .extend([p.x, p.y, p.shape, if p.corner { 1.0 } else { 0.0 }]);
+            }
         }
         self.nums.len()
     }
 
-    /// Writes piece `k` to the numbers: `closed, failed, m, n`, then its `m` point indices,
-    /// then the peak parameter `t_max` of each of its `n` segments (`n = 0` while it has no
-    /// curve). Nothing for an out-of-range `k`. Returns the count.
-    pub fn fill_piece(&mut self, k: usize) -> usize {
+    /// Writes piece `j` of contour `k` to the numbers: `closed, failed, m, n`, then its `m`
+    /// point indices, then the peak parameter `t_max` of each of its `n` segments (`n = 0`
+    /// while it has no curve). Nothing for an out-of-range `k` or `j`. Returns the count.
+    pub fn fill_piece(&mut self, k: usize, j: usize) -> usize {
         self.nums.clear();
-        if k >= self.editor.pieces() {
+        let Some(e) = self.drawing.contour(k) else {
+            return 0;
+        };
+        if j >= e.pieces() {
             return 0;
         }
-        let idx = self.editor.piece_points(k);
-        let spline = self.editor.piece_spline(k);
+        let idx = e.piece_points(j);
+        let spline = e.piece_spline(j);
         let closed = spline.is_some_and(|s| s.is_closed());
-        let failed = self.editor.piece_error(k).is_some();
+        let failed = e.piece_error(j).is_some();
         let segs = spline.map_or(&[][..], |s| s.segments());
         self.nums.extend([
             f64::from(u8::from(closed)),
@@ -289,15 +398,16 @@ impl Session {
         self.nums.len()
     }
 
-    /// Writes `x, y, κ` of segment `j` of piece `k` at parameter `t` to the numbers (the
-    /// exact curve, trigonometric segments included; κ positive for left turns in y-up
-    /// coordinates). Nothing if there is no such segment. Returns the count.
-    pub fn eval(&mut self, k: usize, j: usize, t: f64) -> usize {
+    /// Writes `x, y, κ` of segment `s` of piece `j` of contour `k` at parameter `t` to the
+    /// numbers (the exact curve, trigonometric segments included; κ positive for left turns
+    /// in y-up coordinates). Nothing if there is no such segment. Returns the count.
+    pub fn eval(&mut self, k: usize, j: usize, s: usize, t: f64) -> usize {
         self.nums.clear();
         let seg = self
-            .editor
-            .piece_spline(k)
-            .and_then(|s| s.segments().get(j));
+            .drawing
+            .contour(k)
+            .and_then(|e| e.piece_spline(j))
+            .and_then(|sp| sp.segments().get(s));
         if let Some(seg) = seg {
             let p = seg.eval(t);
             self.nums.extend([p.x, p.y, seg.curvature(t)]);
@@ -305,12 +415,13 @@ impl Session {
         self.nums.len()
     }
 
-    /// Writes the nearest curve point to `(x, y)` to the numbers: `piece, segment, t, x, y,
-    /// distance`; nothing if there is no curve. Returns the count.
+    /// Writes the nearest curve point to `(x, y)` to the numbers: `contour, piece, segment,
+    /// t, x, y, distance`; nothing if there is no curve. Returns the count.
     pub fn hit(&mut self, x: f64, y: f64) -> usize {
         self.nums.clear();
-        if let Some(h) = self.editor.hit_test(Point::new(x, y)) {
+        if let Some((k, h)) = self.drawing.hit_test(Point::new(x, y)) {
             self.nums.extend([
+                k as f64,
                 h.piece as f64,
                 h.segment as f64,
                 h.t,
@@ -322,60 +433,202 @@ impl Session {
         self.nums.len()
     }
 
-    /// The index of the input point nearest to `(x, y)` within `radius`, if any.
-    pub fn nearest_point(&self, x: f64, y: f64, radius: f64) -> Option<usize> {
-        let q = Point::new(x, y);
-        self.editor
-            .doc()
-            .points
-            .iter()
-            .enumerate()
-            .map(|(i, p)| (i, (p.point() - q).hypot()))
-            .filter(|&(_, d)| d <= radius)
-            .min_by(|a, b| a.1.total_cmp(&b.1))
-            .map(|(i, _)| i)
+    /// Writes `contour, index` of the input point nearest to `(x, y)` within `radius`, of
+    /// any contour, to the numbers (nothing if none); the count.
+    pub fn nearest_point(&mut self, x: f64, y: f64, radius: f64) -> usize {
+        self.nums.clear();
+        if let Some((k, i)) = self.drawing.nearest_point(Point::new(x, y), radius) {
+            self.nums.extend([k as f64, i as f64]);
+        }
+        self.nums.len()
     }
 
-    /// Encodes the whole path ([`Editor::to_bezpath`]); the count of numbers.
+    /// Writes the bounding box of the points, `x0, y0, x1, y1`, to the numbers (nothing
+    /// without points); the count.
+    pub fn fill_bounds(&mut self) -> usize {
+        self.nums.clear();
+        if let Some(r) = self.drawing.bounds() {
+            self.nums.extend([r.x0, r.y0, r.x1, r.y1]);
+        }
+        self.nums.len()
+    }
+
+    /// Encodes the drawing's outline ([`Drawing::outline`]: a subpath per contour, closed
+    /// ones ending in `CLOSE`); the count of numbers.
     pub fn fill_path(&mut self) -> usize {
         self.path.clear();
-        encode_path(&self.editor.to_bezpath(), &mut self.path);
+        encode_path(&self.drawing.outline(), &mut self.path);
         self.path.len()
     }
 
-    /// Encodes piece `k` ([`Editor::piece_bezpath`]) into the path buffer; the count of
-    /// numbers.
-    pub fn fill_piece_path(&mut self, k: usize) -> usize {
+    /// Encodes into the path buffer a preview of the stretch of curve a click at `(x, y)`
+    /// would add to the active contour: the curve through the last points since the last
+    /// corner (at most [`PREVIEW_POINTS`]) and `(x, y)`, from the last point on, as a
+    /// polyline; a line where that does not solve. Nothing without an open active contour.
+    /// Returns the count of numbers.
+    pub fn fill_preview(&mut self, x: f64, y: f64) -> usize {
         self.path.clear();
-        encode_path(&self.editor.piece_bezpath(k), &mut self.path);
+        let cursor = Point::new(x, y);
+        let Some(e) = self.editor() else {
+            return 0;
+        };
+        let doc = e.doc();
+        if doc.closed || doc.points.is_empty() || !cursor.is_finite() {
+            return 0;
+        }
+        let pts = &doc.points;
+        let n = pts.len();
+        let mut start = n - 1;
+        while start > 0 && n - start < PREVIEW_POINTS && !(pts[start].corner && start < n - 1) {
+            start -= 1;
+        }
+        if pts[n - 1].corner {
+            start = n - 1;
+        }
+        let mut tail: Vec<Point> = pts[start..].iter().map(|p| p.point()).collect();
+        let last = tail[tail.len() - 1];
+        tail.push(cursor);
+        let mut out = BezPath::new();
+        out.move_to(last);
+        let curve = if tail.len() > 2 {
+            let scheme = doc.scheme;
+            let shape = match scheme {
+                Scheme::Kappa => Shape::Neutral,
+                _ => {
+                    let mut a: Vec<f64> = pts[start..].iter().map(|p| p.shape).collect();
+                    a.push(scheme.neutral_shape());
+                    a[0] = scheme.neutral_shape();
+                    Shape::PerPoint(a)
+                }
+            };
+            let mut solver = Solver::with_options(SolveOptions {
+                max_iterations: 100,
+                accept_unconverged: true,
+                ..SolveOptions::default()
+            });
+            solver.solve(&tail, false, scheme, &shape).ok()
+        } else {
+            None
+        };
+        match curve.as_ref().and_then(|c| c.segments().last()) {
+            Some(seg) if seg.eval(1.0).is_finite() => {
+                const STEPS: usize = 24;
+                for i in 1..=STEPS {
+                    let t = seg.t_max + (1.0 - seg.t_max) * i as f64 / STEPS as f64;
+                    out.line_to(seg.eval(t));
+                }
+            }
+            _ => out.line_to(cursor),
+        }
+        encode_path(&out, &mut self.path);
         self.path.len()
     }
 
-    /// Encodes the curvature comb ([`Editor::curvature_comb`]); the count of numbers.
-    pub fn fill_comb(&mut self, scale: f64, samples: usize) -> usize {
+    /// Encodes piece `j` of contour `k` ([`Editor::piece_bezpath`]) into the path buffer;
+    /// the count of numbers.
+    pub fn fill_piece_path(&mut self, k: usize, j: usize) -> usize {
+        self.path.clear();
+        if let Some(e) = self.drawing.contour(k) {
+            encode_path(&e.piece_bezpath(j), &mut self.path);
+        }
+        self.path.len()
+    }
+
+    /// Encodes the curvature comb of every contour ([`Drawing::comb`]): teeth, then tip
+    /// outlines. `scale` fixes the scale when positive (during a drag); otherwise the
+    /// `percentile` of |κ| gets teeth `length` long. Teeth are cut at `clip × length`.
+    /// Returns the count of numbers; [`Session::comb_scale`] gives the scale used.
+    pub fn fill_comb(
+        &mut self,
+        length: f64,
+        percentile: f64,
+        clip: f64,
+        samples: usize,
+        scale: f64,
+    ) -> usize {
+        let style = CombStyle {
+            samples,
+            length,
+            percentile,
+            clip,
+            scale: (scale > 0.0).then_some(scale),
+        };
+        let comb = self.drawing.comb(&style);
+        self.comb_scale = comb.scale;
         self.comb.clear();
-        encode_path(&self.editor.curvature_comb(scale, samples), &mut self.comb);
+        encode_path(&comb.to_bezpath(), &mut self.comb);
         self.comb.len()
     }
 
-    /// The largest |κ| over all pieces (0 without a curve).
-    pub fn max_curvature(&self) -> f64 {
-        (0..self.editor.pieces())
-            .filter_map(|k| self.editor.piece_spline(k))
-            .map(|s| s.max_abs_curvature())
-            .fold(0.0, f64::max)
+    /// The scale of the last comb (drawing units per unit of curvature).
+    pub fn comb_scale(&self) -> f64 {
+        self.comb_scale
     }
 
-    /// Writes the path as an SVG document ([`Editor::to_svg`]) to the bytes; their count.
-    pub fn export_svg(&mut self, width: f64, height: f64, with_points: bool) -> usize {
-        self.bytes = self.editor.to_svg(width, height, with_points).into_bytes();
+    /// Writes the drawing as an SVG document with its file inside
+    /// ([`Drawing::to_svg_with_document`]) to the bytes; their count.
+    pub fn export_svg(&mut self, width: f64, height: f64, fill: bool) -> usize {
+        self.bytes = self
+            .drawing
+            .to_svg_with_document(width, height, fill)
+            .into_bytes();
         self.bytes.len()
+    }
+
+    /// Writes the drawing's file ([`DrawingDoc`] JSON) to the bytes; their count.
+    pub fn save(&mut self) -> usize {
+        self.bytes = DrawingDoc::of(&self.drawing).to_json().into_bytes();
+        self.bytes.len()
+    }
+
+    /// Opens the text in the input buffer ([`Session::input_buffer`]): a drawing file, a
+    /// single path's file, an SVG exported with its file, or another SVG, whose paths'
+    /// vertices become the points ([`import_svg_paths`]). It replaces the drawing as one
+    /// undo step (with `undoable`; else with an empty history, as for a drawing restored at
+    /// start-up), with no active contour. Returns `Ok` with the number of pieces that failed
+    /// to solve, or the error (the drawing is then unchanged).
+    pub fn open_input(&mut self, undoable: bool) -> Result<u32, kappa::Error> {
+        let text = String::from_utf8_lossy(&self.input).into_owned();
+        let doc = if text.trim_start().starts_with('<') {
+            // An SVG exported here holds its drawing; one from elsewhere gives its vertices.
+            extract_svg_document(&text).or_else(|_| import_svg_paths(&text, self.drawing.scheme()))
+        } else {
+            DrawingDoc::from_json(&text)
+        };
+        let doc = match doc {
+            Ok(d) => d,
+            Err(e) => {
+                self.last = Change::default();
+                self.message = Some(e.to_string());
+                return Err(e);
+            }
+        };
+        let changes = if undoable {
+            self.drawing.replace(doc.contours)
+        } else {
+            let (mut drawing, changes) = Drawing::from_docs(doc.contours, self.drawing.scheme());
+            drawing.set_drag_work(WEB_DRAG_WORK);
+            self.drawing = drawing;
+            changes
+        };
+        self.active = None;
+        let errors = changes
+            .into_iter()
+            .flat_map(|c| c.errors)
+            .collect::<Vec<_>>();
+        let n = errors.len() as u32;
+        self.last = Change {
+            errors,
+            ..Change::default()
+        };
+        self.message = None;
+        Ok(n)
     }
 
     /// Writes the errors of the last edit, one line each (`piece k: message`), to the
     /// bytes; their count (0 when the edit solved everything).
     pub fn last_error(&mut self) -> usize {
-        let text: Vec<String> = self
+        let mut text: Vec<String> = self
             .last
             .errors
             .iter()
@@ -386,6 +639,7 @@ impl Session {
                 _ => format!("piece {k}: {e}"),
             })
             .collect();
+        text.extend(self.message.clone());
         self.bytes = text.join("\n").into_bytes();
         self.bytes.len()
     }
@@ -436,95 +690,183 @@ mod tests {
             for p in star(12) {
                 assert_eq!(s.add_point(p.x, p.y), 0);
             }
+            assert_eq!(s.active(), Some(0));
             s.set_shape(3, 0.9);
-            assert_eq!(s.fill_points(), 48);
+            assert_eq!(s.fill_points(0), 48);
             assert_eq!(s.nums()[3 * 4 + 2], 0.9);
             // Open: one piece through all points; each interior point is its segment's peak.
-            assert_eq!(s.fill_piece(0), 4 + 12 + 10);
+            assert_eq!(s.fill_piece(0, 0), 4 + 12 + 10);
             let info = s.nums().to_vec();
             assert_eq!(&info[..4], &[0.0, 0.0, 12.0, 10.0]);
             let pts = star(12);
             for j in 0..10 {
                 let t = info[16 + j];
-                assert_eq!(s.eval(0, j, t), 3);
+                assert_eq!(s.eval(0, 0, j, t), 3);
                 let (x, y) = (s.nums()[0], s.nums()[1]);
                 assert!((Point::new(x, y) - pts[j + 1]).hypot() < 1e-9);
             }
-            s.eval(0, 0, 0.0);
+            s.eval(0, 0, 0, 0.0);
             assert!((Point::new(s.nums()[0], s.nums()[1]) - pts[0]).hypot() < 1e-9);
-            assert_eq!(s.eval(0, 10, 0.5), 0);
-            assert_eq!(s.fill_piece(1), 0);
-            // The encoded path is the editor's path.
+            assert_eq!(s.eval(0, 0, 10, 0.5), 0);
+            assert_eq!(s.fill_piece(0, 1), 0);
+            assert_eq!(s.fill_piece(1, 0), 0);
+            // The encoded path is the drawing's outline.
             let n = s.fill_path();
-            assert_eq!(decode_path(&s.path()[..n]), Some(s.editor().to_bezpath()));
-            let n = s.fill_comb(1000.0, 8);
-            let comb = decode_path(&s.comb()[..n]).unwrap();
-            assert_eq!(comb, s.editor().curvature_comb(1000.0, 8));
-            assert!(s.max_curvature() > 0.0);
+            assert_eq!(decode_path(&s.path()[..n]), Some(s.drawing().outline()));
+            let n = s.fill_comb(50.0, 0.75, 3.0, 8, 0.0);
+            assert!(decode_path(&s.comb()[..n]).is_some());
+            assert!(s.comb_scale() > 0.0);
             // Close it: one closed piece with a segment per point.
             s.set_closed(true);
-            s.fill_piece(0);
+            s.fill_piece(0, 0);
             assert_eq!(&s.nums()[..4], &[1.0, 0.0, 12.0, 12.0]);
         }
     }
 
+    /// Whether two paths have the same elements with end points within `1e-9`.
+    fn close(a: &BezPath, b: &BezPath) -> bool {
+        a.elements().len() == b.elements().len()
+            && a.elements().iter().zip(b.elements()).all(|(x, y)| {
+                match (x.end_point(), y.end_point()) {
+                    (Some(p), Some(q)) => (p - q).hypot() < 1e-9,
+                    (None, None) => true,
+                    _ => false,
+                }
+            })
+    }
+
     #[test]
-    fn drags_hits_and_exports() {
+    fn contours_files_and_undo() {
         let mut s = Session::new(Scheme::EkCubic);
         for p in star(8) {
             s.add_point(p.x, p.y);
         }
         s.set_closed(true);
-        let before = {
-            s.export_svg(900.0, 600.0, true);
-            String::from_utf8(s.bytes().to_vec()).unwrap()
-        };
-        assert!(before.starts_with("<svg") && before.matches("<circle").count() == 8);
+        // A second contour inside the first: an `o`.
+        let inner: Vec<Point> = star(8)
+            .iter()
+            .map(|p| Point::new(450.0 + 0.5 * (p.x - 450.0), 300.0 + 0.5 * (p.y - 300.0)))
+            .collect();
+        assert_eq!(s.start_contour(inner[0].x, inner[0].y), 1);
+        for p in &inner[1..] {
+            s.add_point(p.x, p.y);
+        }
+        s.set_closed(true);
+        assert_eq!(s.drawing().len(), 2);
+        assert_eq!(s.nearest_point(inner[2].x + 1.0, inner[2].y, 5.0), 2);
+        assert_eq!(s.nums(), &[1.0, 2.0]);
+        assert_eq!(s.hit(450.0 + 112.0, 300.0), 7);
+        assert_eq!(s.nums()[0], 1.0);
+        s.fill_bounds();
+        assert_eq!(s.nums().len(), 4);
+        // Save, clear, open: the same drawing.
+        s.save();
+        let file = s.bytes().to_vec();
+        let path = s.drawing().outline();
+        assert!(s.clear());
+        assert_eq!(s.fill_path(), 0);
+        s.input_buffer(file.len()).copy_from_slice(&file);
+        assert_eq!(s.open_input(true).unwrap(), 0);
+        assert!(close(&s.drawing().outline(), &path));
+        // The SVG export opens too, and the bad file leaves the drawing as it is.
+        s.export_svg(900.0, 600.0, true);
+        let svg = s.bytes().to_vec();
+        let text = String::from_utf8(svg.clone()).unwrap();
+        assert_eq!(text.matches('Z').count(), 2);
+        s.input_buffer(3).copy_from_slice(b"{x:");
+        assert!(s.open_input(true).is_err());
+        assert!(s.last_error() > 0);
+        assert_eq!(s.drawing().len(), 2);
+        // An SVG from elsewhere: its path's vertices.
+        let other = b"<svg><path d=\"M0 0 L100 0 L100 100 Z\"/></svg>";
+        s.input_buffer(other.len()).copy_from_slice(other);
+        assert_eq!(s.open_input(true).unwrap(), 0);
+        assert_eq!(s.drawing().len(), 1);
+        assert!(s.drawing().contour(0).unwrap().doc().closed);
+        assert!(s.undo());
+        s.input_buffer(svg.len()).copy_from_slice(&svg);
+        assert_eq!(s.open_input(true).unwrap(), 0);
+        assert_eq!(s.drawing().len(), 2);
+        // Undo: the opens, the clear, back to the drawing.
+        assert!(s.undo() && s.undo() && s.undo());
+        assert!(close(&s.drawing().outline(), &path));
+        s.input_buffer(file.len()).copy_from_slice(&file);
+        assert_eq!(s.open_input(false).unwrap(), 0);
+        assert!(!s.drawing().can_undo());
+        assert!(close(&s.drawing().outline(), &path));
+        assert!(s.delete_contour(0));
+        assert_eq!(s.drawing().len(), 1);
+        assert!(s.undo());
+        assert_eq!(s.drawing().len(), 2);
+    }
+
+    #[test]
+    fn drags_hits_and_errors() {
+        let mut s = Session::new(Scheme::EkCubic);
+        for p in star(8) {
+            s.add_point(p.x, p.y);
+        }
+        s.set_closed(true);
+        let before = s.drawing().outline();
         let p = star(8)[2];
-        assert_eq!(s.nearest_point(p.x + 3.0, p.y - 2.0, 8.0), Some(2));
-        assert_eq!(s.nearest_point(p.x + 30.0, p.y, 8.0), None);
+        assert_eq!(s.nearest_point(p.x + 3.0, p.y - 2.0, 8.0), 2);
+        assert_eq!(s.nums(), &[0.0, 2.0]);
+        assert_eq!(s.nearest_point(p.x + 30.0, p.y, 8.0), 0);
         for k in 1..=10 {
             assert_eq!(s.drag_point(2, p.x + k as f64, p.y), 0);
         }
         s.end_drag();
         assert!(s.last_change().iterations > 0);
-        s.export_svg(900.0, 600.0, true);
-        let after = String::from_utf8(s.bytes().to_vec()).unwrap();
-        assert_ne!(after, before);
-        assert!(after.contains(&format!("cx=\"{}\"", p.x + 10.0)));
+        assert_ne!(s.drawing().outline(), before);
         // The whole gesture is one undo step.
         assert!(s.undo());
-        s.export_svg(900.0, 600.0, true);
-        assert_eq!(s.bytes(), before.as_bytes());
+        assert_eq!(s.drawing().outline(), before);
         assert!(s.redo());
         // A slider drag is one step too.
         for a in [0.8, 0.81, 0.82, 0.83, 0.84] {
             assert_eq!(s.drag_shape(4, a), 0);
         }
         s.end_drag();
-        assert_eq!(s.editor().doc().points[4].shape, 0.84);
+        assert_eq!(s.editor().unwrap().doc().points[4].shape, 0.84);
         assert!(s.undo());
-        assert_eq!(s.editor().doc().points[4].shape, 2.0 / 3.0);
+        assert_eq!(s.editor().unwrap().doc().points[4].shape, 2.0 / 3.0);
         assert!(s.redo());
         // A hit on the curve: distance zero at a point of the curve.
-        assert_eq!(s.hit(p.x + 10.0, p.y), 6);
-        assert!(s.nums()[5] < 1e-6);
+        assert_eq!(s.hit(p.x + 10.0, p.y), 7);
+        assert!(s.nums()[6] < 1e-6);
         // No insertion on top of a point (the hit above is point 2 itself).
         assert_eq!(s.insert_point(p.x + 10.0, p.y), None);
         // Insert on the curve, then errors: a point dragged onto its neighbour.
         let (a, b) = (star(8)[2] + kurbo::Vec2::new(10.0, 0.0), star(8)[3]);
         let mid = a.midpoint(b);
         let at = s.insert_point(mid.x, mid.y).unwrap();
-        assert_eq!(s.editor().doc().points.len(), 9);
-        let q = s.editor().doc().points[at + 1].point();
+        assert_eq!(s.editor().unwrap().doc().points.len(), 9);
+        let q = s.editor().unwrap().doc().points[at + 1].point();
         assert_eq!(s.drag_point(at, q.x, q.y), 1);
         assert!(s.last_error() > 0);
         let msg = String::from_utf8(s.bytes().to_vec()).unwrap();
         assert!(msg.starts_with("piece 0: "), "{msg}");
-        // An empty session has no curve to hit or insert on.
+        // The preview of the next click: nothing on a closed contour; from the last point of
+        // an open one.
+        s.end_drag();
+        assert!(s.undo());
+        assert_eq!(s.fill_preview(0.0, 0.0), 0);
+        assert_eq!(s.set_closed(false), 0);
+        let n = s.fill_preview(100.0, 100.0);
+        let preview = decode_path(&s.path()[..n]).unwrap();
+        let last = *s.editor().unwrap().doc().points.last().unwrap();
+        assert_eq!(preview.elements()[0], kurbo::PathEl::MoveTo(last.point()));
+        let end = preview.elements().last().unwrap().end_point().unwrap();
+        assert!((end - Point::new(100.0, 100.0)).hypot() < 1e-6);
+        assert_eq!(s.fill_preview(f64::NAN, 0.0), 0);
+        // An empty session has no curve to hit or insert on; edits without an active
+        // contour change nothing.
         let mut e = Session::new(Scheme::Kappa);
         assert_eq!(e.hit(0.0, 0.0), 0);
         assert_eq!(e.insert_point(0.0, 0.0), None);
         assert_eq!(e.fill_path(), 0);
+        assert_eq!(e.move_point(0, 1.0, 1.0), 0);
+        assert_eq!(e.set_closed(true), 0);
+        assert!(!e.undo());
     }
 }

@@ -1,8 +1,8 @@
 // Browser test of the path-tool page: headless Debian Chromium driven by Playwright.
 //
 // KAPPA_WEB_URL: the served page (web/test/run.sh starts the server and sets it).
-// KAPPA_BLESS=1: write the golden screenshot (tests/golden/web-path-tool.png) and the README
-// picture (docs/path-tool.png) instead of comparing.
+// KAPPA_BLESS=1: write the golden screenshot (tests/golden/web-path-tool.png) instead of
+// comparing it, and the user guide's picture (docs/path-tool.png).
 
 import { test, before, after } from "node:test";
 import assert from "node:assert/strict";
@@ -35,6 +35,8 @@ const DRAWN_TOL = { "kappa": 1e-6, "ek-cubic": 1e-6, "ek-trig": 0.06 };
 // Drag latency target per update, ms (issue 8), asserted on the median: the machine is
 // shared, and a preempted update says nothing about the engine (mean and p95 are printed).
 const LATENCY_TARGET_MS = 1;
+// A frame at 60 Hz, ms: the budget of a whole drag update with its drawing.
+const FRAME_MS = 16;
 
 const FLAGS = [
   "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
@@ -46,7 +48,7 @@ let browser, page;
 before(async () => {
   // Playwright gives every launch a fresh temporary profile (user-data-dir).
   browser = await chromium.launch({ executablePath: "/usr/bin/chromium", headless: true, args: FLAGS });
-  page = await browser.newPage({ viewport: { width: 1000, height: 720 }, deviceScaleFactor: 1 });
+  page = await browser.newPage({ viewport: { width: 1000, height: 800 }, deviceScaleFactor: 1 });
   const problems = [];
   page.on("pageerror", (e) => problems.push(String(e)));
   page.on("console", (m) => { if (m.type() === "error") problems.push(m.text()); });
@@ -76,51 +78,57 @@ async function canvasOrigin() {
 async function checkCurve(drawnTol) {
   const r = await page.evaluate(() => {
     const k = window.kappa;
-    const pts = k.points();
-    const pieces = k.pieces();
-    let worst = 0, worstPeak = 0, worstJoint = 0, segments = 0;
+    let worst = 0, worstPeak = 0, worstJoint = 0, segments = 0, pieceCount = 0;
     const bad = [];
+    const all = [];
     const d = (a, p) => Math.hypot(a.x - p.x, a.y - p.y);
-    const collapsed = (pk, j) => {
-      const [a, m, b] = [0, 0.5, 1].map((t) => k.evalCurve(pk, j, t));
-      return d(a, m) === 0 && d(m, b) === 0;
-    };
-    pieces.forEach((piece, pk) => {
-      if (piece.failed) bad.push(`piece ${pk} failed: ${k.lastError()}`);
-      const q = piece.points.map((i) => pts[i]);
-      const n = piece.tMax.length;
-      segments += n;
-      // Segment j peaks at point j (closed) or j + 1 (open); a two-point piece is a line.
-      const peakPoint = (j) => piece.closed ? q[j] : q.length === 2 ? null : q[j + 1];
-      let kmax = 0;
-      for (let j = 0; j < n; j++) {
-        kmax = Math.max(kmax, Math.abs(k.evalCurve(pk, j, piece.tMax[j]).curvature));
-      }
-      for (let j = 0; j < n; j++) {
-        const t = piece.tMax[j];
-        const at = k.evalCurve(pk, j, t);
-        const p = peakPoint(j);
-        if (p) worst = Math.max(worst, d(at, p));
-        for (const s of [t - 1e-3, t + 1e-3]) {
-          if (p && s > 0 && s < 1) {
-            const excess = Math.abs(k.evalCurve(pk, j, s).curvature) - Math.abs(at.curvature);
-            worstPeak = Math.max(worstPeak, excess / kmax);
+    for (let c = 0; c < k.contours(); c++) {
+      const pts = k.points(c);
+      all.push(...pts);
+      const pieces = k.pieces(c);
+      pieceCount += pieces.length;
+      const ev = (pk, j, t) => k.evalCurve(c, pk, j, t);
+      const collapsed = (pk, j) => {
+        const [a, m, b] = [0, 0.5, 1].map((t) => ev(pk, j, t));
+        return d(a, m) === 0 && d(m, b) === 0;
+      };
+      pieces.forEach((piece, pk) => {
+        if (piece.failed) bad.push(`contour ${c} piece ${pk} failed: ${k.lastError()}`);
+        const q = piece.points.map((i) => pts[i]);
+        const n = piece.tMax.length;
+        segments += n;
+        // Segment j peaks at point j (closed) or j + 1 (open); a two-point piece is a line.
+        const peakPoint = (j) => piece.closed ? q[j] : q.length === 2 ? null : q[j + 1];
+        let kmax = 0;
+        for (let j = 0; j < n; j++) {
+          kmax = Math.max(kmax, Math.abs(ev(pk, j, piece.tMax[j]).curvature));
+        }
+        for (let j = 0; j < n; j++) {
+          const t = piece.tMax[j];
+          const at = ev(pk, j, t);
+          const p = peakPoint(j);
+          if (p) worst = Math.max(worst, d(at, p));
+          for (const s of [t - 1e-3, t + 1e-3]) {
+            if (p && s > 0 && s < 1) {
+              const excess = Math.abs(ev(pk, j, s).curvature) - Math.abs(at.curvature);
+              worstPeak = Math.max(worstPeak, excess / kmax);
+            }
+          }
+          // |κ| is continuous at every joint; a segment collapsed onto its point (an
+          // inflection through the point) is stepped over.
+          const next = collapsed(pk, (j + 1) % n) ? (j + 2) % n : (j + 1) % n;
+          if (!collapsed(pk, j) && (piece.closed || next > j)) {
+            const a = Math.abs(ev(pk, j, 1).curvature);
+            const b = Math.abs(ev(pk, next, 0).curvature);
+            worstJoint = Math.max(worstJoint, Math.abs(a - b) / kmax);
           }
         }
-        // |κ| is continuous at every joint; a segment collapsed onto its point (an
-        // inflection through the point) is stepped over.
-        const next = collapsed(pk, (j + 1) % n) ? (j + 2) % n : (j + 1) % n;
-        if (!collapsed(pk, j) && (piece.closed || next > j)) {
-          const a = Math.abs(k.evalCurve(pk, j, 1).curvature);
-          const b = Math.abs(k.evalCurve(pk, next, 0).curvature);
-          worstJoint = Math.max(worstJoint, Math.abs(a - b) / kmax);
+        if (!piece.closed && n > 0) {
+          worst = Math.max(worst, d(ev(pk, 0, 0), q[0]));
+          worst = Math.max(worst, d(ev(pk, n - 1, 1), q[q.length - 1]));
         }
-      }
-      if (!piece.closed && n > 0) {
-        worst = Math.max(worst, d(k.evalCurve(pk, 0, 0), q[0]));
-        worst = Math.max(worst, d(k.evalCurve(pk, n - 1, 1), q[q.length - 1]));
-      }
-    });
+      });
+    }
     // The drawn path: nearest point of its elements to each input point (64 samples, then
     // golden-section refinement).
     const els = k.pathElements();
@@ -140,7 +148,7 @@ async function checkCurve(drawnTol) {
       return null;
     };
     let drawn = 0;
-    for (const p of pts) {
+    for (const p of all) {
       let best = Infinity, cur = null, first = null;
       for (const e of els) {
         if (e[0] === 0) { cur = first = { x: e[1], y: e[2] }; continue; }
@@ -162,9 +170,11 @@ async function checkCurve(drawnTol) {
       }
       drawn = Math.max(drawn, best);
     }
-    return { worst, worstPeak, worstJoint, drawn, segments, pieces: pieces.length, bad };
+    const finite = els.every((e) => e.slice(1).every(Number.isFinite));
+    return { worst, worstPeak, worstJoint, drawn, segments, pieces: pieceCount, bad, finite };
   });
   assert.deepEqual(r.bad, []);
+  assert.ok(r.finite, "a drawn coordinate is not finite");
   assert.ok(r.segments > 0, "no curve");
   assert.ok(r.worst <= CURVE_TOL, `curve misses a point by ${r.worst} px`);
   assert.ok(r.worstPeak <= 1e-9, `|κ| rises next to a peak by ${r.worstPeak} of max |κ|`);
@@ -227,8 +237,10 @@ test("clicks, a drag and a shape edit keep the curve through every point", async
   const svgAfter = await page.evaluate(() => window.kappa.exportSvg());
   const pathData = (svg) => svg.match(/<path d="([^"]*)"/)[1];
   assert.notEqual(pathData(svgAfter), pathData(svgBefore), "exported path unchanged by the drag");
-  assert.ok(svgAfter.includes(`cx="${pts[DRAG_FROM].x}" cy="${pts[DRAG_FROM].y}"`));
-  assert.ok(!svgBefore.includes(`cx="${pts[DRAG_FROM].x}" cy="${pts[DRAG_FROM].y}"`));
+  // The κ document inside the SVG has the moved point.
+  const moved = `"x":${pts[DRAG_FROM].x.toFixed(1)},"y":${pts[DRAG_FROM].y.toFixed(1)}`;
+  assert.ok(svgAfter.includes(moved), moved);
+  assert.ok(!svgBefore.includes(moved));
   await checkCurve(DRAWN_TOL["ek-cubic"]);
 
   // Close the path, select point 3 by clicking it and sharpen it with the slider.
@@ -268,8 +280,8 @@ test("clicks, a drag and a shape edit keep the curve through every point", async
     const k = window.kappa;
     const n = k.pieces()[0].tMax.length;
     const dir = (a, b) => { const l = Math.hypot(b.x - a.x, b.y - a.y); return [(b.x - a.x) / l, (b.y - a.y) / l]; };
-    const end = dir(k.evalCurve(0, n - 1, 1 - 1e-6), k.evalCurve(0, n - 1, 1));
-    const start = dir(k.evalCurve(0, 0, 0), k.evalCurve(0, 0, 1e-6));
+    const end = dir(k.evalCurve(0, 0, n - 1, 1 - 1e-6), k.evalCurve(0, 0, n - 1, 1));
+    const start = dir(k.evalCurve(0, 0, 0, 0), k.evalCurve(0, 0, 0, 1e-6));
     return end[0] * start[1] - end[1] * start[0];
   });
   assert.ok(Math.abs(tangents) > 0.05, `no tangent break at the corner (cross ${tangents})`);
@@ -293,10 +305,15 @@ test("clicks, a drag and a shape edit keep the curve through every point", async
   // The Export SVG button downloads what exportSvg(false) gives.
   const [download] = await Promise.all([page.waitForEvent("download"), page.click("#export")]);
   const exported = fs.readFileSync(await download.path(), "utf8");
-  assert.equal(exported, await page.evaluate(() => window.kappa.exportSvg(false)));
+  assert.equal(exported, await page.evaluate(() => window.kappa.exportSvg()));
   assert.ok(exported.startsWith("<svg") && exported.includes("<path d=\"M"));
+  // The closed contour with a corner is one subpath ending in Z.
+  const d = exported.match(/<path d="([^"]*)"/)[1];
+  assert.equal(d.match(/M/g).length, 1, d);
+  assert.ok(d.trim().endsWith("Z"), d);
 
-  // Select point 3 again for the picture.
+  // Select point 3 again for the picture (a single click: no double click with the last).
+  await page.waitForTimeout(450);
   await page.mouse.click(o.x + CLICKS[3][0], o.y + CLICKS[3][1]);
   assert.deepEqual(page.problems, []);
 
@@ -308,9 +325,7 @@ test("clicks, a drag and a shape edit keep the curve through every point", async
   if (BLESS || !fs.existsSync(GOLDEN)) {
     assert.ok(BLESS, `no golden ${GOLDEN}: run with KAPPA_BLESS=1`);
     fs.writeFileSync(GOLDEN, shot);
-    fs.mkdirSync(path.dirname(README_PICTURE), { recursive: true });
-    fs.writeFileSync(README_PICTURE, full);
-    console.log(`blessed ${GOLDEN} and ${README_PICTURE}`);
+    console.log(`blessed ${GOLDEN}`);
   } else {
     const fraction = comparePng(shot, GOLDEN);
     console.log(`screenshot: ${(100 * fraction).toFixed(3)}% of pixels differ from the golden`);
@@ -362,6 +377,51 @@ test("drag latency on a 100-point path", async () => {
     assert.ok(engine.p50 < LATENCY_TARGET_MS,
       `${scheme}: median drag update ${engine.p50} ms, target < ${LATENCY_TARGET_MS} ms`);
   }
+  assert.deepEqual(page.problems, []);
+});
+
+// A 300-point glyph-like drawing: a closed wavy ring of 240 points and an inner contour of 60.
+// The drag handler's work per update: the warm re-solve (capped, see the engine's DRAG_WORK),
+// the outline and the comb of both contours, and the canvas drawing, rasterized.
+test("drag latency with 300 points in two contours, with the canvas drawing", async () => {
+  const rows = [];
+  for (const scheme of ["ek-cubic", "ek-trig"]) {
+    const r = await page.evaluate((scheme) => {
+      const k = window.kappa;
+      k.reset(scheme);
+      k.setComb(true);
+      // Opened from a file: one solve per contour.
+      const contour = (n, rx, ry, wave) => ({
+        points: Array.from({ length: n }, (_, i) => {
+          const th = (i / n) * 2 * Math.PI;
+          const r = 1 + wave * Math.sin(3 * th);
+          return { x: 450 + rx * r * Math.cos(th), y: 330 + ry * r * Math.sin(th),
+            shape: scheme === "kappa" ? 0 : 0.7, corner: false };
+        }),
+        closed: true, scheme,
+      });
+      k.open(JSON.stringify({ contours: [contour(240, 300, 260, 0.03), contour(60, 120, 150, 0)] }));
+      k.setActive(0);
+      // Warm-up (V8's baseline tier), then the measured gesture with canvas drawing.
+      k.benchDrag({ index: 30, updates: 100, draw: true });
+      const m = k.benchDrag({ index: 30, updates: 300, draw: true });
+      return { ...m, failed: k.pieces(0).some((p) => p.failed) || k.pieces(1).some((p) => p.failed), error: k.lastError() };
+    }, scheme);
+    rows.push({ scheme, ...r });
+    console.log(`drag update with drawing, 300 points, ${scheme}: mean ${r.mean.toFixed(3)} ms, ` +
+      `p50 ${r.p50.toFixed(3)} ms, p95 ${r.p95.toFixed(3)} ms, max ${r.max.toFixed(3)} ms ` +
+      `(${r.iterations.toFixed(2)} iterations/update, ${r.errors} unconverged updates)`);
+  }
+  fs.writeFileSync(path.join(OUT, "latency-300.json"), JSON.stringify(rows, null, 2));
+  // Asserted on the median: the machine is shared (two cores), and a preempted update says
+  // nothing about the page; p95 is printed (and in target/web/latency-300.json). (The κ
+  // curve of these rings does not converge even from scratch; a drag that does not converge
+  // is the next test's.)
+  for (const r of rows) {
+    assert.ok(r.p50 <= FRAME_MS, `${r.scheme}: median ${r.p50} ms, a frame is ${FRAME_MS} ms`);
+    assert.ok(!r.failed, `${r.scheme}: a contour did not solve: ${r.error}`);
+  }
+  await checkCurve(DRAWN_TOL["ek-trig"]);
   assert.deepEqual(page.problems, []);
 });
 
@@ -448,4 +508,373 @@ test("drag updates of a 300-point path that does not converge stay within a fram
     `per update (iterations ${Math.max(...r.iterations)}), end_drag ${r.end.toFixed(0)} ms`);
   assert.ok(r.failed && r.shown > 250, `${r.shown} path elements`);
   assert.ok(Math.max(...r.iterations) <= 50, `${r.iterations}`);
+});
+
+// ---- The designer's conventions: contours, keyboard, pointer, files, zoom, touch ----
+
+const ring = (cx, cy, rx, ry, n) => Array.from({ length: n },
+  (_, i) => [cx + rx * Math.cos((i / n) * 2 * Math.PI - Math.PI / 2),
+    cy + ry * Math.sin((i / n) * 2 * Math.PI - Math.PI / 2)].map(Math.round));
+const OUTER = ring(450, 300, 190, 220, 8);
+const INNER = ring(450, 300, 95, 140, 6);
+const pause = () => page.waitForTimeout(450); // clicks on one point this far apart are no double click
+
+async function drawO(o) {
+  for (const pts of [OUTER, INNER]) {
+    for (const [x, y] of pts) await page.mouse.click(o.x + x, o.y + y);
+    await pause();
+    // A click on the first point closes the contour; the next click starts another.
+    await page.mouse.click(o.x + pts[0][0], o.y + pts[0][1]);
+    await pause();
+  }
+}
+
+test("an o of two contours: click the first point to close, Escape, undo over contours", async () => {
+  await page.evaluate(() => { window.kappa.reset("ek-cubic"); window.kappa.setComb(true); });
+  const o = await canvasOrigin();
+  await drawO(o);
+  let r = await page.evaluate(() => {
+    const k = window.kappa;
+    return { contours: k.contours(), closed: [k.closed(0), k.closed(1)],
+      points: [k.points(0).length, k.points(1).length],
+      z: k.pathElements().filter((e) => e[0] === 4).length,
+      moves: k.pathElements().filter((e) => e[0] === 0).length };
+  });
+  assert.deepEqual(r, { contours: 2, closed: [true, true], points: [8, 6], z: 2, moves: 2 });
+  await checkCurve(DRAWN_TOL["ek-cubic"]);
+  // Escape ends an open contour: the next click starts a third one.
+  await page.mouse.click(o.x + 60, o.y + 60);
+  await page.mouse.click(o.x + 120, o.y + 40);
+  await page.keyboard.press("Escape");
+  assert.equal(await page.evaluate(() => window.kappa.active()), -1);
+  await page.mouse.click(o.x + 60, o.y + 500);
+  r = await page.evaluate(() => ({ contours: window.kappa.contours(),
+    last: window.kappa.points(3).length }));
+  assert.deepEqual(r, { contours: 4, last: 1 });
+  // Escape with nothing drawn deselects; Delete on a lone point removes its contour.
+  await page.keyboard.press("Delete");
+  assert.equal(await page.evaluate(() => window.kappa.contours()), 3);
+  // Delete contour (the button) and Clear, each undone.
+  await page.evaluate(() => window.kappa.setActive(2));
+  await page.click("#delete-contour");
+  assert.equal(await page.evaluate(() => window.kappa.contours()), 2);
+  const before = await page.evaluate(() => window.kappa.save());
+  await page.click("#clear");
+  assert.equal(await page.evaluate(() => window.kappa.contours()), 0);
+  assert.match(await page.evaluate(() => window.kappa.status()), /Undo brings/);
+  await page.keyboard.press("Control+z");
+  assert.equal(await page.evaluate(() => window.kappa.save()), before);
+  await page.keyboard.press("Control+Shift+z");
+  assert.equal(await page.evaluate(() => window.kappa.contours()), 0);
+  await page.keyboard.press("Control+y");
+  await page.keyboard.press("Control+z");
+  assert.equal(await page.evaluate(() => window.kappa.save()), before);
+  // Undo walks back through both contours to the empty drawing.
+  const steps = await page.evaluate(() => {
+    const k = window.kappa;
+    let n = 0;
+    while (k.engine.undo()) n++;
+    const empty = k.contours();
+    for (let i = 0; i < n; i++) k.engine.redo();
+    k.undo(); k.redo();
+    return { n, empty, doc: k.save() };
+  });
+  assert.equal(steps.empty, 0);
+  assert.ok(steps.n >= 8 + 6 + 2, `${steps.n} steps`);
+  assert.equal(steps.doc, before);
+  assert.deepEqual(page.problems, []);
+});
+
+test("corners by double click, Alt+click and C; no corner from Ctrl+C; right-click adds nothing", async () => {
+  const o = await canvasOrigin();
+  const p = INNER[2];
+  const corner = () => page.evaluate(() => window.kappa.points(1)[2].corner);
+  const was = await corner();
+  await pause();
+  await page.mouse.dblclick(o.x + p[0], o.y + p[1]);
+  assert.equal(await corner(), !was, "double click");
+  await pause();
+  await page.keyboard.down("Alt");
+  await page.mouse.click(o.x + p[0], o.y + p[1]);
+  await page.keyboard.up("Alt");
+  assert.equal(await corner(), was, "Alt+click");
+  await page.keyboard.press("Control+c");
+  assert.equal(await corner(), was, "Ctrl+C toggled a corner");
+  await page.keyboard.press("c");
+  assert.equal(await corner(), !was, "C");
+  await page.keyboard.press("c");
+  const count = await page.evaluate(() => window.kappa.save());
+  await page.mouse.click(o.x + 40, o.y + 40, { button: "right" });
+  assert.equal(await page.evaluate(() => window.kappa.save()), count, "right-click changed the drawing");
+  await checkCurve(DRAWN_TOL["ek-cubic"]);
+});
+
+test("shortcuts after a checkbox and a slider; arrows nudge by 1 and 10", async () => {
+  const o = await canvasOrigin();
+  const p = INNER[3];
+  await pause();
+  await page.mouse.click(o.x + p[0], o.y + p[1]);
+  assert.deepEqual(await page.evaluate(() => window.kappa.selection()), { contour: 1, index: 3 });
+  // Tick the Comb checkbox (focus on it), then arrows and undo still act on the drawing.
+  await page.click("#comb");
+  await page.click("#comb");
+  await page.focus("#comb");
+  await page.keyboard.press("ArrowRight");
+  await page.keyboard.press("Shift+ArrowDown");
+  let q = await page.evaluate(() => window.kappa.points(1)[3]);
+  assert.deepEqual([q.x, q.y], [p[0] + 1, p[1] + 10]);
+  await page.keyboard.press("Control+z");
+  await page.keyboard.press("Control+z");
+  q = await page.evaluate(() => window.kappa.points(1)[3]);
+  assert.deepEqual([q.x, q.y], p);
+  // Move the shape slider (focus on it): arrows nudge the point, not the slider; Delete
+  // deletes the point.
+  await page.locator("#shape").fill("0.8");
+  await page.focus("#shape");
+  await page.keyboard.press("ArrowLeft");
+  q = await page.evaluate(() => window.kappa.points(1)[3]);
+  assert.deepEqual([q.x, q.y, q.shape], [p[0] - 1, p[1], 0.8]);
+  await page.keyboard.press("Delete");
+  assert.equal(await page.evaluate(() => window.kappa.points(1).length), 5);
+  for (let i = 0; i < 3; i++) await page.keyboard.press("Control+z");
+  q = await page.evaluate(() => window.kappa.points(1)[3]);
+  assert.deepEqual([q.x, q.y, q.shape], [p[0], p[1], 2 / 3]);
+  assert.deepEqual(page.problems, []);
+});
+
+test("a drag continues outside the canvas (pointer capture)", async () => {
+  const o = await canvasOrigin();
+  const p = OUTER[0];
+  await pause();
+  await page.mouse.move(o.x + p[0], o.y + p[1]);
+  await page.mouse.down();
+  // Up over the toolbar, above the canvas, then back in.
+  await page.mouse.move(o.x + p[0] + 30, 5, { steps: 8 });
+  let q = await page.evaluate(() => window.kappa.points(0)[0]);
+  assert.deepEqual([q.x, q.y], [p[0] + 30, 5 - o.y]);
+  await page.mouse.move(o.x + p[0] + 10, o.y + p[1] - 20, { steps: 4 });
+  await page.mouse.up();
+  q = await page.evaluate(() => window.kappa.points(0)[0]);
+  assert.deepEqual([q.x, q.y], [p[0] + 10, p[1] - 20]);
+  // One undo step for the whole drag.
+  await page.keyboard.press("Control+z");
+  q = await page.evaluate(() => window.kappa.points(0)[0]);
+  assert.deepEqual([q.x, q.y], p);
+});
+
+test("comb teeth stand across the curve; one sharp point does not flatten the comb", async () => {
+  const r = await page.evaluate(() => {
+    const k = window.kappa;
+    // A wave beside the o: its curvature passes through zero between its peaks.
+    k.setActive(-1);
+    k.startContour(100, 650);
+    for (const [x, y] of [[180, 600], [330, 640], [420, 710], [520, 670]]) k.addPoint(x, y);
+    const comb = k.comb();
+    // Every tooth against the tangent of the curve at its base; the lowest-curvature one
+    // reported.
+    let worst = 0, low = null, hitWorst = 0;
+    for (const [base, tip] of comb.teeth) {
+      const len = Math.hypot(tip.x - base.x, tip.y - base.y);
+      if (!(len > 1e-6)) continue;
+      const h = k.hit(base.x, base.y);
+      hitWorst = Math.max(hitWorst, h.distance);
+      const a = k.evalCurve(h.contour, h.piece, h.segment, Math.max(0, h.t - 1e-4));
+      const c = k.evalCurve(h.contour, h.piece, h.segment, Math.min(1, h.t + 1e-4));
+      const tan = [c.x - a.x, c.y - a.y];
+      const tl = Math.hypot(...tan);
+      if (!(tl > 0)) continue;
+      const cos = (tan[0] * (tip.x - base.x) + tan[1] * (tip.y - base.y)) / (tl * len);
+      worst = Math.max(worst, Math.abs(cos));
+      if (!low || len < low.len) low = { len, cos };
+    }
+    const median = (cb) => {
+      const l = cb.teeth.map(([b, t]) => Math.hypot(t.x - b.x, t.y - b.y)).sort((x, y) => x - y);
+      return l[Math.floor(l.length / 2)];
+    };
+    const before = { scale: comb.scale, median: median(comb) };
+    // One point at shape 0.99.
+    k.setActive(0);
+    k.setShape(2, 0.99);
+    const sharp = k.comb();
+    const longest = Math.max(...sharp.teeth.map(([b, t]) => Math.hypot(t.x - b.x, t.y - b.y)));
+    for (let i = 0; i < 6; i++) k.undo();
+    return { cos: worst, lowCos: low.cos, lowLen: low.len, distance: hitWorst, before,
+      after: { scale: sharp.scale, median: median(sharp) }, longest, length: sharp.length };
+  });
+  console.log(`comb: lowest tooth ${r.lowLen.toExponential(2)} px at cos ` +
+    `${r.lowCos.toExponential(2)} to the tangent, worst |cos| ${r.cos.toExponential(2)}; scale ${r.before.scale.toFixed(1)} → ${r.after.scale.toFixed(1)} ` +
+    `with one point at 0.99`);
+  assert.ok(r.distance < 1e-6);
+  assert.ok(r.lowLen < 0.8 * r.before.median, `the lowest tooth is ${r.lowLen} px`);
+  assert.ok(r.cos < 1e-3, `a tooth at cos ${r.cos} to the tangent`);
+  assert.ok(r.after.scale > 0.8 * r.before.scale, JSON.stringify(r));
+  assert.ok(r.after.median > 0.6 * r.before.median, JSON.stringify(r));
+  assert.ok(r.longest <= 3 * r.length + 1e-9, `tooth ${r.longest} longer than the clip`);
+});
+
+test("zoom about the cursor, fit, space-drag pan", async () => {
+  const o = await canvasOrigin();
+  const at = { x: 300, y: 200 };
+  const docAt = (v) => ({ x: (at.x - v.tx) / v.scale, y: (at.y - v.ty) / v.scale });
+  const v0 = await page.evaluate(() => window.kappa.view());
+  await page.mouse.move(o.x + at.x, o.y + at.y);
+  await page.mouse.wheel(0, -300);
+  await page.waitForFunction((s) => window.kappa.view().scale > s, v0.scale);
+  const v1 = await page.evaluate(() => window.kappa.view());
+  assert.ok(v1.scale > 1.2 * v0.scale, `scale ${v1.scale}`);
+  const [a, b] = [docAt(v0), docAt(v1)];
+  assert.ok(Math.hypot(a.x - b.x, a.y - b.y) < 1e-6, "the point under the cursor moved");
+  // A point is still picked where it is drawn, zoomed: drag it by 10 screen px.
+  await page.waitForTimeout(100);
+  const vz = await page.evaluate(() => window.kappa.view());
+  const p = await page.evaluate(() => window.kappa.toScreen(window.kappa.points(1)[0]));
+  await pause();
+  await page.mouse.move(o.x + p.x, o.y + p.y);
+  await page.mouse.down();
+  await page.mouse.move(o.x + p.x + 10, o.y + p.y, { steps: 3 });
+  await page.mouse.up();
+  const moved = await page.evaluate(() => window.kappa.points(1)[0].x);
+  assert.ok(Math.abs(moved - (INNER[0][0] + 10 / vz.scale)) < 1e-2, `${moved} ${JSON.stringify(vz)} ${INNER[0]}`);
+  await page.keyboard.press("Control+z");
+  // Space+drag pans.
+  await page.keyboard.down(" ");
+  await page.mouse.move(o.x + 500, o.y + 400);
+  await page.mouse.down();
+  await page.mouse.move(o.x + 560, o.y + 380, { steps: 4 });
+  await page.mouse.up();
+  await page.keyboard.up(" ");
+  const v2 = await page.evaluate(() => window.kappa.view());
+  assert.ok(Math.abs(v2.tx - vz.tx - 60) < 1e-9 && Math.abs(v2.ty - vz.ty + 20) < 1e-9);
+  // Fit: the drawing fills the canvas, centred.
+  await page.click("#fit");
+  const fitted = await page.evaluate(() => {
+    const k = window.kappa;
+    const v = k.view();
+    const xs = [], ys = [];
+    for (let c = 0; c < k.contours(); c++) {
+      for (const p of k.points(c)) { const s = k.toScreen(p); xs.push(s.x); ys.push(s.y); }
+    }
+    return { v, x0: Math.min(...xs), x1: Math.max(...xs), y0: Math.min(...ys), y1: Math.max(...ys) };
+  });
+  assert.ok(fitted.x0 >= 0 && fitted.y0 >= 0 && fitted.x1 <= fitted.v.width && fitted.y1 <= fitted.v.height);
+  assert.ok(Math.abs((fitted.y0 + fitted.y1) / 2 - fitted.v.height / 2) < 1);
+  fs.writeFileSync(path.join(OUT, "web-o.png"), await page.screenshot());
+  if (BLESS) {
+    fs.mkdirSync(path.dirname(README_PICTURE), { recursive: true });
+    fs.writeFileSync(README_PICTURE, await page.screenshot());
+    console.log(`blessed ${README_PICTURE}`);
+  }
+  await page.evaluate(() => window.kappa.setView({ scale: 1, tx: 0, ty: 0 }));
+  assert.deepEqual(page.problems, []);
+});
+
+test("save, reload, open: the drawing is kept; SVG export is closed and opens again", async () => {
+  const saved = await page.evaluate(() => { window.kappa.saveNow(); return window.kappa.save(); });
+  await page.reload();
+  await page.waitForSelector("body[data-ready='1']", { timeout: 15000 });
+  assert.equal(await page.evaluate(() => window.kappa.save()), saved, "reload lost the drawing");
+  assert.equal(await page.evaluate(() => window.kappa.engine.canUndo()), false);
+  await checkCurve(DRAWN_TOL["ek-cubic"]);
+  // The Save button downloads the same JSON; Export SVG holds it too, with a Z per contour.
+  const [json] = await Promise.all([page.waitForEvent("download"), page.click("#save")]);
+  const file = fs.readFileSync(await json.path(), "utf8");
+  assert.equal(file, saved);
+  const doc = JSON.parse(file);
+  assert.equal(doc.contours.length, 2);
+  assert.ok(doc.contours.every((c) => c.closed && c.scheme === "ek-cubic"));
+  const [svgDl] = await Promise.all([page.waitForEvent("download"), page.click("#export")]);
+  const svg = fs.readFileSync(await svgDl.path(), "utf8");
+  const d = svg.match(/<path d="([^"]*)"/)[1];
+  assert.equal(d.match(/M/g).length, 2);
+  assert.equal(d.match(/Z/g).length, 2);
+  assert.ok(svg.includes('<metadata id="kappa-document">'));
+  fs.writeFileSync(path.join(OUT, "o.svg"), svg);
+  // Clear, then open the SVG through the file input: the same drawing, undoably.
+  await page.click("#clear");
+  await page.setInputFiles("#open", { name: "o.svg", mimeType: "image/svg+xml", buffer: Buffer.from(svg) });
+  await page.waitForFunction(() => window.kappa.contours() === 2);
+  const reopened = await page.evaluate(() => JSON.parse(window.kappa.save()));
+  assert.deepEqual(reopened.contours.map((c) => c.points), doc.contours.map((c) => c.points));
+  // A bad file leaves the drawing and says why.
+  await page.setInputFiles("#open", { name: "bad.json", mimeType: "application/json", buffer: Buffer.from("{nope") });
+  await page.waitForFunction(() => /not opened/.test(window.kappa.status()));
+  assert.equal(await page.evaluate(() => window.kappa.contours()), 2);
+  // A single path's document from before drawings had contours opens by paste.
+  const old = JSON.stringify({ points: [{ x: 100, y: 100, shape: 0.8 }, { x: 200, y: 60, shape: 0.8 },
+    { x: 300, y: 100, shape: 0.8 }], closed: false, scheme: "ek-cubic" });
+  await page.evaluate((text) => {
+    const data = new DataTransfer();
+    data.setData("text/plain", text);
+    document.dispatchEvent(new ClipboardEvent("paste", { clipboardData: data, bubbles: true }));
+  }, old);
+  assert.equal(await page.evaluate(() => window.kappa.contours()), 1);
+  await page.keyboard.press("Control+z");
+  assert.equal(await page.evaluate(() => window.kappa.contours()), 2);
+  // An SVG drawn elsewhere, dropped on the page: its paths' vertices become the points.
+  const foreign = '<svg xmlns="http://www.w3.org/2000/svg"><path d="M100 100 C150 50 250 50 300 100 ' +
+    'L300 300 L100 300 Z M150 150 h100 v100 h-100 z"/></svg>';
+  await page.evaluate((text) => {
+    const data = new DataTransfer();
+    data.items.add(new File([text], "other.svg", { type: "image/svg+xml" }));
+    window.dispatchEvent(new DragEvent("drop", { dataTransfer: data, bubbles: true, cancelable: true }));
+  }, foreign);
+  await page.waitForFunction(() => window.kappa.contours() === 2 && window.kappa.points(0).length === 4);
+  const imported = await page.evaluate(() => [0, 1].map((k) => window.kappa.points(k).map((p) => [p.x, p.y])));
+  assert.deepEqual(imported, [[[100, 100], [300, 100], [300, 300], [100, 300]],
+    [[150, 150], [250, 150], [250, 250], [150, 250]]]);
+  await checkCurve(DRAWN_TOL["ek-cubic"]);
+  await page.keyboard.press("Control+z");
+  assert.deepEqual(await page.evaluate(() => JSON.parse(window.kappa.save()).contours.map((c) => c.points)),
+    doc.contours.map((c) => c.points));
+  await page.evaluate(() => window.kappa.setView({ scale: 1, tx: 0, ty: 0 }));
+  assert.deepEqual(page.problems, []);
+});
+
+test("phone: 390×844 layout, touch taps and drags, two-finger pinch", async () => {
+  const context = await browser.newContext({ viewport: { width: 390, height: 844 },
+    deviceScaleFactor: 2, isMobile: true, hasTouch: true });
+  const phone = await context.newPage();
+  const problems = [];
+  phone.on("pageerror", (e) => problems.push(String(e)));
+  phone.on("console", (m) => { if (m.type() === "error") problems.push(m.text()); });
+  await phone.goto(URL);
+  await phone.waitForSelector("body[data-ready='1']", { timeout: 15000 });
+  const layout = await phone.evaluate(() => ({
+    width: document.documentElement.scrollWidth,
+    small: [...document.querySelectorAll("header button, header select, header .file")]
+      .map((b) => b.getBoundingClientRect())
+      .filter((r) => r.height < 32 || r.width < 32).length,
+    canvas: document.getElementById("canvas").getBoundingClientRect().toJSON(),
+  }));
+  assert.ok(layout.width <= 390, `page ${layout.width} px wide`);
+  assert.equal(layout.small, 0, "controls under 32 px");
+  assert.ok(layout.canvas.height > 400, `canvas ${layout.canvas.height} px tall`);
+  const o = { x: layout.canvas.x, y: layout.canvas.y };
+  const pts = [[80, 100], [200, 60], [320, 120], [300, 300], [120, 320]];
+  for (const [x, y] of pts) await phone.touchscreen.tap(o.x + x, o.y + y);
+  assert.equal(await phone.evaluate(() => window.kappa.points(0).length), 5);
+  // A touch drag of point 1 through the DevTools protocol (touch start, moves, end).
+  const cdp = await context.newCDPSession(phone);
+  const touch = async (type, points) => cdp.send("Input.dispatchTouchEvent", {
+    type, touchPoints: points.map(([x, y], id) => ({ x: o.x + x, y: o.y + y, id })),
+  });
+  await touch("touchStart", [[200, 60]]);
+  for (let i = 1; i <= 6; i++) await touch("touchMove", [[200 + 5 * i, 60 + 10 * i]]);
+  await touch("touchEnd", []);
+  const q = await phone.evaluate(() => window.kappa.points(0)[1]);
+  assert.deepEqual([q.x, q.y], [230, 120]);
+  assert.equal(await phone.evaluate(() => window.kappa.points(0).length), 5);
+  // Two fingers apart: zoom in about their middle, no point added or moved.
+  const before = await phone.evaluate(() => window.kappa.save());
+  await touch("touchStart", [[150, 400], [250, 400]]);
+  for (let i = 1; i <= 5; i++) await touch("touchMove", [[150 - 10 * i, 400], [250 + 10 * i, 400]]);
+  await touch("touchEnd", []);
+  const v = await phone.evaluate(() => window.kappa.view());
+  assert.ok(Math.abs(v.scale - 2) < 1e-9, `pinch scale ${v.scale}`);
+  assert.equal(await phone.evaluate(() => window.kappa.save()), before);
+  fs.writeFileSync(path.join(OUT, "web-phone.png"), await phone.screenshot());
+  const st = await phone.evaluate(() => window.kappa.status());
+  assert.ok(!/NaN/.test(st), st);
+  assert.deepEqual(problems, []);
+  await context.close();
 });

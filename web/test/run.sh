@@ -3,7 +3,7 @@
 # missing, checks and unit-tests the wasm crate natively (fmt, clippy, cargo test), builds
 # the wasm module, installs the test's npm packages (npm ci), serves the page on a free
 # localhost port, runs the Playwright test in headless Chromium, and stops the server.
-# KAPPA_BLESS=1 re-creates the golden screenshot and the README picture.
+# KAPPA_BLESS=1 re-creates the golden screenshot and the user guide's picture (docs/path-tool.png).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 web=$(pwd)

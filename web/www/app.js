@@ -1,89 +1,181 @@
-// The path-tool page: canvas drawing, mouse and keyboard editing, and the `window.kappa`
-// API that the browser test (web/test/) drives.
+// The path-tool page: a drawing of several contours on a zoomable canvas, edited with the
+// pointer (mouse, pen or touch) and the keyboard in the conventions of a curvature pen, kept
+// in localStorage and in files; and the `window.kappa` API that the browser test
+// (web/test/) drives.
 
 import { Engine, tracePath, pathElements } from "./kappa.js";
 
-// Comb teeth per segment: dense on short paths, 8 from 60 points on (the native bench's).
-const combSamples = (n) => Math.max(8, Math.min(32, Math.round(480 / Math.max(n, 1))));
-const COMB_LENGTH = 50;       // longest comb tooth, px (set after each edit, kept while dragging)
-const PICK_RADIUS = 8;        // px around a point that grabs it
-const INSERT_RADIUS = 10;     // px around the curve where Shift+click inserts
+// Comb teeth per segment: 16 on short drawings, fewer on long ones (4 from 300 points on), so
+// that the comb costs a drag update no more than about a millisecond.
+const combSamples = (n) => Math.max(4, Math.min(16, Math.round(1200 / Math.max(n, 1))));
+const COMB_LENGTH = 40;       // comb tooth at the reference |κ|, screen px (× the comb slider)
+const COMB_PERCENTILE = 0.75; // the reference |κ|: this percentile of the samples
+const COMB_CLIP = 3;          // teeth longer than this × COMB_LENGTH are cut
+const PICK_RADIUS = 8;        // screen px around a point that grabs it (mouse and pen)
+const TOUCH_RADIUS = 18;      // the same for a finger
+const INSERT_RADIUS = 10;     // screen px around the curve where Shift+click inserts
+const DOUBLE_CLICK_MS = 400;  // two presses on one point this close make a double click
+const TAP_SLOP = 10;          // screen px a finger may move and still tap
+const MIN_SCALE = 0.02, MAX_SCALE = 64;
 const WARNING_COLOR = "#e07000"; // a piece whose solve did not converge (its best curve)
+const STORAGE_KEY = "kappa-path-tool/drawing";
+const VIEW_KEY = "kappa-path-tool/view";
 
 const $ = (id) => document.getElementById(id);
 const canvas = $("canvas");
+const stage = $("stage");
 const ctx = canvas.getContext("2d");
-const W = canvas.width, H = canvas.height;
-const dpr = window.devicePixelRatio || 1;
-canvas.width = W * dpr;
-canvas.height = H * dpr;
-canvas.style.width = `${W}px`;
-canvas.style.height = `${H}px`;
+let W = 0, H = 0, dpr = 1;
 
 const engine = await Engine.load(new URL("kappa_web.wasm", import.meta.url));
 engine.reset($("scheme").value);
 
+// Screen = doc × scale + (tx, ty), in CSS px of the canvas.
+const view = { scale: 1, tx: 0, ty: 0 };
+
 const ui = {
-  selected: -1,
-  dragging: -1,
+  sel: null,          // the selected point {contour, index}
+  drag: null,         // a point drag {id, contour, index}
+  pan: null,          // a pan drag {id, x, y, tx, ty}
+  tap: null,          // a finger down away from the points {id, s, p}: a tap until it moves
+  pinch: null,        // two fingers {d0, m0, scale0, tx0, ty0}
+  pointers: new Map(),// pointers down: id → screen position
+  space: false,       // Space held: drags pan
+  hover: null,        // the pointer in doc coordinates (for the preview), or null
+  lastDown: null,     // the last press on a point {time, contour, index}
   comb: $("comb").checked,
-  combScale: 0,
+  combScale: 0,       // the comb's scale, kept during a drag
   lastUpdateMs: null,
   message: "",
 };
 
-// Shape slider range per scheme ([min, max) of the scheme; κ has no shape).
 const SHAPE_RANGE = { "kappa": null, "ek-cubic": [0.667, 0.99], "ek-trig": [0.5, 0.99] };
+
+const toDoc = (s) => ({ x: (s.x - view.tx) / view.scale, y: (s.y - view.ty) / view.scale });
+const toScreen = (p) => ({ x: p.x * view.scale + view.tx, y: p.y * view.scale + view.ty });
+const totalPoints = () => {
+  let n = 0;
+  for (let k = 0; k < engine.contourCount(); k++) n += engine.pointCount(k);
+  return n;
+};
+const combLength = () => COMB_LENGTH * 2 ** Number($("comb-scale").value) / view.scale;
+
+function resize() {
+  const r = stage.getBoundingClientRect();
+  dpr = window.devicePixelRatio || 1;
+  W = Math.max(1, r.width);
+  H = Math.max(1, r.height);
+  canvas.width = Math.round(W * dpr);
+  canvas.height = Math.round(H * dpr);
+  draw();
+}
 
 function draw() {
   ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   ctx.fillStyle = "#fff";
   ctx.fillRect(0, 0, W, H);
-  if (ui.comb && ui.combScale > 0) {
-    const comb = engine.combData(ui.combScale, combSamples(engine.pointCount()));
+  const s = view.scale;
+  ctx.setTransform(dpr * s, 0, 0, dpr * s, dpr * view.tx, dpr * view.ty);
+  if (ui.comb) {
+    const comb = engine.combData(combLength(), COMB_PERCENTILE, COMB_CLIP,
+      combSamples(totalPoints()), ui.drag ? ui.combScale : 0);
+    if (!ui.drag) ui.combScale = engine.combScale();
     ctx.beginPath();
     tracePath(ctx, comb);
     ctx.strokeStyle = "rgba(40, 110, 220, 0.55)";
-    ctx.lineWidth = 1;
+    ctx.lineWidth = 1 / s;
     ctx.stroke();
   }
-  const path = engine.pathData();
   ctx.beginPath();
-  tracePath(ctx, path);
+  tracePath(ctx, engine.pathData());
   ctx.strokeStyle = "#111";
-  ctx.lineWidth = 2;
+  ctx.lineWidth = 2 / s;
   ctx.lineJoin = "round";
   ctx.stroke();
   // Pieces whose solve did not converge show their best curve, in a warning style.
-  engine.pieces().forEach((piece, k) => {
-    if (!piece.failed) return;
+  const contours = engine.contourCount();
+  for (let k = 0; k < contours; k++) {
+    engine.pieces(k).forEach((piece, j) => {
+      if (!piece.failed) return;
+      ctx.beginPath();
+      tracePath(ctx, engine.piecePathData(k, j));
+      ctx.strokeStyle = WARNING_COLOR;
+      ctx.lineWidth = 2.5 / s;
+      ctx.setLineDash([8 / s, 5 / s]);
+      ctx.stroke();
+      ctx.setLineDash([]);
+    });
+  }
+  // The rubber band: what a click here would add to the contour being drawn.
+  const active = engine.active();
+  let closeHint = false;
+  if (!ui.drag && !ui.pan && !ui.pinch && ui.hover && active >= 0 && !engine.closed(active)) {
+    const near = engine.nearestPoint(ui.hover.x, ui.hover.y, PICK_RADIUS / s);
+    closeHint = near && near.contour === active && near.index === 0 &&
+      engine.pointCount(active) >= 3;
+    if (!near) {
+      ctx.beginPath();
+      tracePath(ctx, engine.previewData(ui.hover.x, ui.hover.y));
+      ctx.strokeStyle = "rgba(200, 20, 20, 0.7)";
+      ctx.lineWidth = 1.25 / s;
+      ctx.setLineDash([6 / s, 4 / s]);
+      ctx.stroke();
+      ctx.setLineDash([]);
+    }
+  }
+  // Points, in screen pixels: the active contour's red, the others' grey; one path per
+  // contour (a path per point costs a frame on a long drawing).
+  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+  ctx.lineWidth = 1.5;
+  for (let k = 0; k < contours; k++) {
+    const on = k === active;
+    const r = on ? 4.5 : 3.5;
     ctx.beginPath();
-    tracePath(ctx, engine.piecePathData(k));
-    ctx.strokeStyle = WARNING_COLOR;
-    ctx.lineWidth = 2.5;
-    ctx.setLineDash([8, 5]);
+    engine.points(k).forEach((p) => {
+      const q = toScreen(p);
+      if (p.corner) {
+        ctx.rect(q.x - r, q.y - r, 2 * r, 2 * r);
+      } else {
+        ctx.moveTo(q.x + r, q.y);
+        ctx.arc(q.x, q.y, r, 0, 2 * Math.PI);
+      }
+    });
+    ctx.fillStyle = "#fff";
+    ctx.fill();
+    ctx.strokeStyle = on ? "#d11" : "#888";
     ctx.stroke();
-    ctx.setLineDash([]);
-  });
-  const pts = engine.points();
-  pts.forEach((p, i) => {
-    const r = i === ui.selected ? 6 : 4.5;
+  }
+  const sel = ui.sel && ui.sel.contour < contours ? engine.points(ui.sel.contour)[ui.sel.index] : null;
+  if (sel) {
+    const q = toScreen(sel);
     ctx.beginPath();
-    if (p.corner) ctx.rect(p.x - r, p.y - r, 2 * r, 2 * r);
-    else ctx.arc(p.x, p.y, r, 0, 2 * Math.PI);
-    ctx.fillStyle = i === ui.selected ? "#d11" : "#fff";
+    if (sel.corner) ctx.rect(q.x - 6, q.y - 6, 12, 12);
+    else ctx.arc(q.x, q.y, 6, 0, 2 * Math.PI);
+    ctx.fillStyle = "#d11";
     ctx.fill();
     ctx.strokeStyle = "#d11";
-    ctx.lineWidth = 1.5;
     ctx.stroke();
-  });
+  }
+  if (closeHint) {
+    const q = toScreen(engine.points(active)[0]);
+    ctx.beginPath();
+    ctx.arc(q.x, q.y, 9, 0, 2 * Math.PI);
+    ctx.strokeStyle = "#d11";
+    ctx.stroke();
+  }
 }
 
 function status() {
-  const n = engine.pointCount();
-  const pieces = engine.x.kp_piece_count();
-  let text = `${n} point${n === 1 ? "" : "s"} · ${pieces} piece${pieces === 1 ? "" : "s"} · ` +
-    `${engine.scheme()}${engine.closed() ? ", closed" : ", open"}`;
+  const contours = engine.contourCount();
+  const k = engine.active();
+  let text = `${contours} contour${contours === 1 ? "" : "s"} · ${engine.scheme()}`;
+  if (k >= 0) {
+    const n = engine.pointCount(k);
+    const pieces = engine.pieces(k).length;
+    text += ` · contour ${k + 1}: ${n} point${n === 1 ? "" : "s"}, ${pieces} piece` +
+      `${pieces === 1 ? "" : "s"}, ${engine.closed(k) ? "closed" : "open"}`;
+  }
+  text += ` · zoom ${Math.round(view.scale * 100)}%`;
   const iterations = engine.lastIterations();
   if (iterations > 0) text += ` · last edit ${iterations} solver iterations`;
   if (ui.lastUpdateMs !== null) text += ` · drag update ${ui.lastUpdateMs.toFixed(3)} ms`;
@@ -97,137 +189,511 @@ function status() {
   }
 }
 
+// The selected point, if it still exists (an undo may have taken it).
+function selection() {
+  const s = ui.sel;
+  if (!s || s.contour >= engine.contourCount() || s.index >= engine.pointCount(s.contour)) {
+    ui.sel = null;
+    return null;
+  }
+  return s;
+}
+
 function syncControls() {
-  const n = engine.pointCount();
-  if (ui.selected >= n) ui.selected = n - 1;
+  const sel = selection();
   const scheme = engine.scheme();
   $("scheme").value = scheme;
-  $("closed").checked = engine.closed();
+  const active = engine.active();
+  $("closed").checked = active >= 0 && engine.closed(active);
+  $("closed").disabled = active < 0;
   const range = SHAPE_RANGE[scheme];
   const slider = $("shape");
-  const pts = engine.points();
-  const sel = ui.selected >= 0 ? pts[ui.selected] : null;
-  slider.disabled = !range || !sel;
+  const point = sel ? engine.points(sel.contour)[sel.index] : null;
+  slider.disabled = !range || !point;
   if (range) {
     slider.min = range[0];
     slider.max = range[1];
   }
-  if (sel && range) slider.value = sel.shape;
-  $("shape-value").textContent = sel && range ? sel.shape.toFixed(3) : "";
-  $("corner").disabled = !sel;
-  $("delete").disabled = !sel;
+  if (point && range) slider.value = point.shape;
+  $("shape-value").textContent = point && range ? point.shape.toFixed(3) : "";
+  $("corner").disabled = !point;
+  $("delete").disabled = !point;
+  $("delete-contour").disabled = active < 0;
+  $("new-contour").disabled = active < 0;
+  $("undo").disabled = !engine.canUndo();
+  $("redo").disabled = !engine.canRedo();
 }
 
-// After an edit that is not a drag update: the last edit's errors, new comb scale, controls,
-// drawing.
-function refresh() {
-  ui.message = engine.lastError();
-  const k = engine.maxCurvature();
-  ui.combScale = k > 0 ? COMB_LENGTH / k : 0;
+let saveTimer = 0;
+function autosave() {
+  clearTimeout(saveTimer);
+  saveTimer = setTimeout(saveNow, 250);
+}
+function saveNow() {
+  clearTimeout(saveTimer);
+  try {
+    localStorage.setItem(STORAGE_KEY, engine.save());
+    localStorage.setItem(VIEW_KEY, JSON.stringify(view));
+  } catch (e) {
+    ui.message = `not saved in this browser: ${e.message}`;
+  }
+}
+
+// After an edit that is not a drag update: errors, controls, drawing, status, autosave.
+function refresh({ keepMessage = false } = {}) {
+  if (!keepMessage) ui.message = engine.lastError();
   syncControls();
   draw();
   status();
+  autosave();
 }
 
-function mouse(e) {
+// Makes contour k active with point i selected.
+function select(k, i) {
+  engine.setActive(k);
+  ui.sel = k >= 0 && i >= 0 ? { contour: k, index: i } : null;
+}
+
+function screenPos(e) {
   const r = canvas.getBoundingClientRect();
-  return { x: e.clientX - r.left - canvas.clientLeft, y: e.clientY - r.top - canvas.clientTop };
+  return { x: e.clientX - r.left, y: e.clientY - r.top };
 }
 
-canvas.addEventListener("mousedown", (e) => {
-  const p = mouse(e);
-  let i = engine.nearestPoint(p.x, p.y, PICK_RADIUS);
-  if (i < 0 && e.shiftKey) {
-    const hit = engine.hit(p.x, p.y);
-    if (hit && hit.distance <= INSERT_RADIUS) i = engine.insertPoint(p.x, p.y);
-  }
-  if (i < 0) {
-    engine.addPoint(p.x, p.y);
-    i = engine.pointCount() - 1;
-  }
-  ui.selected = i;
-  ui.dragging = i;
-  refresh();
-});
-
-canvas.addEventListener("mousemove", (e) => {
-  const p = mouse(e);
-  if (ui.dragging < 0) {
-    canvas.style.cursor = engine.nearestPoint(p.x, p.y, PICK_RADIUS) >= 0 ? "move" : "crosshair";
-    return;
-  }
-  const t0 = performance.now();
-  const errors = engine.dragPoint(ui.dragging, p.x, p.y);
+function zoomAbout(s, factor) {
+  const scale = Math.min(MAX_SCALE, Math.max(MIN_SCALE, view.scale * factor));
+  const q = toDoc(s);
+  view.scale = scale;
+  view.tx = s.x - q.x * scale;
+  view.ty = s.y - q.y * scale;
   draw();
-  ui.lastUpdateMs = performance.now() - t0;
-  ui.message = errors > 0 ? engine.lastError() : "";
   status();
-});
+  autosave();
+}
+
+// Fits the drawing in the window (the identity view without points).
+function fit() {
+  const b = engine.bounds();
+  if (!b) {
+    Object.assign(view, { scale: 1, tx: 0, ty: 0 });
+  } else {
+    const margin = Math.min(60, 0.1 * Math.min(W, H));
+    const bw = Math.max(b.x1 - b.x0, 1e-9), bh = Math.max(b.y1 - b.y0, 1e-9);
+    let scale = Math.min((W - 2 * margin) / bw, (H - 2 * margin) / bh);
+    if (!Number.isFinite(scale) || scale <= 0) scale = 1;
+    view.scale = Math.min(MAX_SCALE, Math.max(MIN_SCALE, scale));
+    view.tx = W / 2 - view.scale * (b.x0 + b.x1) / 2;
+    view.ty = H / 2 - view.scale * (b.y0 + b.y1) / 2;
+  }
+  draw();
+  status();
+  autosave();
+}
+
+// ---- Pointer: points, pan, pinch ----
 
 function endDrag() {
-  if (ui.dragging < 0) return;
-  ui.dragging = -1;
+  if (!ui.drag) return;
+  ui.drag = null;
   engine.endDrag();
   refresh();
 }
-canvas.addEventListener("mouseup", endDrag);
-canvas.addEventListener("mouseleave", endDrag);
+
+function startPinch() {
+  const [a, b] = [...ui.pointers.values()];
+  ui.pinch = {
+    d0: Math.max(1, Math.hypot(b.x - a.x, b.y - a.y)),
+    m0: { x: (a.x + b.x) / 2, y: (a.y + b.y) / 2 },
+    scale0: view.scale, tx0: view.tx, ty0: view.ty,
+  };
+}
+
+function applyPinch() {
+  const [a, b] = [...ui.pointers.values()];
+  const p = ui.pinch;
+  const d = Math.max(1, Math.hypot(b.x - a.x, b.y - a.y));
+  const m = { x: (a.x + b.x) / 2, y: (a.y + b.y) / 2 };
+  const scale = Math.min(MAX_SCALE, Math.max(MIN_SCALE, p.scale0 * d / p.d0));
+  // The doc point under the first midpoint stays under the fingers.
+  const q = { x: (p.m0.x - p.tx0) / p.scale0, y: (p.m0.y - p.ty0) / p.scale0 };
+  view.scale = scale;
+  view.tx = m.x - q.x * scale;
+  view.ty = m.y - q.y * scale;
+  draw();
+  status();
+}
+
+canvas.addEventListener("contextmenu", (e) => e.preventDefault());
+
+canvas.addEventListener("pointerdown", (e) => {
+  // Only the primary button adds or picks; the middle one pans; the right one does nothing.
+  if (e.pointerType === "mouse" && e.button !== 0 && e.button !== 1) return;
+  e.preventDefault();
+  canvas.setPointerCapture(e.pointerId);
+  const s = screenPos(e);
+  ui.pointers.set(e.pointerId, s);
+  if (ui.pointers.size === 2) {
+    // A second finger: the gesture becomes a pinch (zoom and pan); a point drag ends.
+    endDrag();
+    ui.pan = null;
+    ui.tap = null;
+    startPinch();
+    return;
+  }
+  if (ui.pointers.size > 2) return;
+  if (e.button === 1 || ui.space) {
+    ui.pan = { id: e.pointerId, x: s.x, y: s.y, tx: view.tx, ty: view.ty };
+    canvas.classList.add("pan");
+    return;
+  }
+  const p = toDoc(s);
+  const radius = (e.pointerType === "touch" ? TOUCH_RADIUS : PICK_RADIUS) / view.scale;
+  const near = engine.nearestPoint(p.x, p.y, radius);
+  const now = performance.now();
+  if (near) {
+    const { contour: k, index: i } = near;
+    const last = ui.lastDown;
+    const again = last && now - last.time < DOUBLE_CLICK_MS && last.contour === k &&
+      last.index === i;
+    const drawing = engine.active() === k && !engine.closed(k);
+    select(k, i);
+    if (e.altKey || again) {
+      // Alt+click or a double click: corner on or off.
+      ui.lastDown = null;
+      engine.toggleCorner(i);
+      refresh();
+      return;
+    }
+    ui.lastDown = { time: now, contour: k, index: i };
+    if (drawing && i === 0 && engine.pointCount(k) >= 3) {
+      // The first point of the contour being drawn: close it.
+      engine.setClosed(true);
+    }
+    ui.drag = { id: e.pointerId, contour: k, index: i };
+    refresh();
+    return;
+  }
+  ui.lastDown = null;
+  if (e.shiftKey) {
+    const hit = engine.hit(p.x, p.y);
+    if (hit && hit.distance * view.scale <= INSERT_RADIUS) {
+      const i = engine.insertPoint(p.x, p.y);
+      if (i >= 0) {
+        select(engine.active(), i);
+        ui.drag = { id: e.pointerId, contour: engine.active(), index: i };
+        refresh();
+        return;
+      }
+    }
+  }
+  if (e.pointerType === "touch") {
+    // A finger adds its point when it lifts without moving (a tap); a drag pans, and a
+    // second finger makes a pinch.
+    ui.tap = { id: e.pointerId, s, p };
+    return;
+  }
+  const at = addPoint(p);
+  ui.drag = { id: e.pointerId, ...at };
+  refresh();
+});
+
+// A new point at `p`: at the end of the open contour being drawn, or the start of a new one;
+// selected. Returns {contour, index}.
+function addPoint(p) {
+  const active = engine.active();
+  let k;
+  if (active >= 0 && !engine.closed(active)) {
+    k = active;
+    engine.addPoint(p.x, p.y);
+  } else {
+    k = engine.startContour(p.x, p.y);
+  }
+  const i = engine.pointCount(k) - 1;
+  select(k, i);
+  return { contour: k, index: i };
+}
+
+canvas.addEventListener("pointermove", (e) => {
+  const s = screenPos(e);
+  if (ui.pointers.has(e.pointerId)) ui.pointers.set(e.pointerId, s);
+  if (ui.pinch) {
+    if (ui.pointers.size >= 2) applyPinch();
+    return;
+  }
+  if (ui.tap && ui.tap.id === e.pointerId &&
+      Math.hypot(s.x - ui.tap.s.x, s.y - ui.tap.s.y) > TAP_SLOP) {
+    ui.pan = { id: e.pointerId, x: ui.tap.s.x, y: ui.tap.s.y, tx: view.tx, ty: view.ty };
+    ui.tap = null;
+  }
+  if (ui.pan && ui.pan.id === e.pointerId) {
+    view.tx = ui.pan.tx + s.x - ui.pan.x;
+    view.ty = ui.pan.ty + s.y - ui.pan.y;
+    draw();
+    return;
+  }
+  const p = toDoc(s);
+  if (ui.drag && ui.drag.id === e.pointerId) {
+    const t0 = performance.now();
+    engine.setActive(ui.drag.contour);
+    const errors = engine.dragPoint(ui.drag.index, p.x, p.y);
+    draw();
+    ui.lastUpdateMs = performance.now() - t0;
+    ui.message = errors > 0 ? engine.lastError() : "";
+    status();
+    return;
+  }
+  if (e.pointerType === "touch") return;
+  ui.hover = p;
+  const near = engine.nearestPoint(p.x, p.y, PICK_RADIUS / view.scale);
+  const active = engine.active();
+  canvas.classList.toggle("move", !!near && !ui.space);
+  canvas.classList.toggle("close", !!near && near.contour === active && near.index === 0 &&
+    !engine.closed(active) && engine.pointCount(active) >= 3);
+  draw();
+});
+
+function pointerEnd(e) {
+  ui.pointers.delete(e.pointerId);
+  if (canvas.hasPointerCapture(e.pointerId)) canvas.releasePointerCapture(e.pointerId);
+  if (ui.pinch) {
+    if (ui.pointers.size < 2) {
+      ui.pinch = null;
+      autosave();
+    }
+    return;
+  }
+  if (ui.pan && ui.pan.id === e.pointerId) {
+    ui.pan = null;
+    if (!ui.space) canvas.classList.remove("pan");
+    autosave();
+    return;
+  }
+  if (ui.drag && ui.drag.id === e.pointerId) endDrag();
+  if (ui.tap && ui.tap.id === e.pointerId) {
+    const { p } = ui.tap;
+    ui.tap = null;
+    if (e.type === "pointerup") {
+      addPoint(p);
+      refresh();
+    }
+  }
+}
+canvas.addEventListener("pointerup", pointerEnd);
+canvas.addEventListener("pointercancel", pointerEnd);
+canvas.addEventListener("pointerleave", () => {
+  if (ui.hover && !ui.drag) {
+    ui.hover = null;
+    draw();
+  }
+});
+
+canvas.addEventListener("wheel", (e) => {
+  e.preventDefault();
+  const unit = e.deltaMode === 1 ? 16 : e.deltaMode === 2 ? H : 1;
+  zoomAbout(screenPos(e), Math.exp(-e.deltaY * unit * 0.0015));
+}, { passive: false });
+
+// ---- Controls ----
+
+// A control gives the focus back once used, so Space and the arrows go to the drawing (the
+// shortcuts work with the focus anywhere but in a text field in any case).
+for (const el of document.querySelectorAll("header button, header select, header input")) {
+  el.addEventListener("change", () => el.blur());
+  if (el instanceof HTMLButtonElement) el.addEventListener("click", () => el.blur());
+}
 
 $("scheme").addEventListener("change", (e) => { engine.setScheme(e.target.value); refresh(); });
-$("closed").addEventListener("change", (e) => { engine.setClosed(e.target.checked); refresh(); });
+$("closed").addEventListener("change", (e) => {
+  if (engine.active() < 0) return;
+  engine.setClosed(e.target.checked);
+  refresh();
+});
 $("comb").addEventListener("change", (e) => { ui.comb = e.target.checked; draw(); });
+$("comb-scale").addEventListener("input", () => draw());
 $("shape").addEventListener("input", (e) => {
-  if (ui.selected < 0) return;
-  engine.dragShape(ui.selected, Number(e.target.value));
+  const sel = selection();
+  if (!sel) return;
+  engine.setActive(sel.contour);
+  engine.dragShape(sel.index, Number(e.target.value));
   refresh();
 });
-$("shape").addEventListener("change", () => { engine.endDrag(); });
-$("corner").addEventListener("click", () => {
-  if (ui.selected < 0) return;
-  engine.toggleCorner(ui.selected);
+$("shape").addEventListener("change", () => { engine.endDrag(); refresh(); });
+
+function toggleCorner() {
+  const sel = selection();
+  if (!sel) return;
+  engine.setActive(sel.contour);
+  engine.toggleCorner(sel.index);
   refresh();
-});
+}
+$("corner").addEventListener("click", toggleCorner);
+
 function deleteSelected() {
-  if (ui.selected < 0) return;
-  engine.deletePoint(ui.selected);
-  ui.selected = Math.min(ui.selected, engine.pointCount() - 1);
+  const sel = selection();
+  if (!sel) return;
+  if (engine.pointCount(sel.contour) <= 1) {
+    // The last point: the contour goes.
+    engine.deleteContour(sel.contour);
+    ui.sel = null;
+  } else {
+    engine.setActive(sel.contour);
+    engine.deletePoint(sel.index);
+    ui.sel = { contour: sel.contour, index: Math.max(0, sel.index - 1) };
+  }
   refresh();
 }
 $("delete").addEventListener("click", deleteSelected);
-$("undo").addEventListener("click", () => { engine.undo(); refresh(); });
-$("redo").addEventListener("click", () => { engine.redo(); refresh(); });
-$("clear").addEventListener("click", () => {
-  engine.reset(engine.scheme());
-  ui.selected = -1;
+
+// Escape: the contour being drawn ends (the next click starts a new one) and nothing is
+// selected.
+function escape() {
+  select(-1, -1);
+  refresh({ keepMessage: true });
+}
+$("new-contour").addEventListener("click", escape);
+$("delete-contour").addEventListener("click", () => {
+  const k = engine.active();
+  if (k < 0) return;
+  engine.deleteContour(k);
+  ui.sel = null;
   refresh();
 });
-$("export").addEventListener("click", () => {
-  const blob = new Blob([engine.exportSvg(W, H, false)], { type: "image/svg+xml" });
-  const a = document.createElement("a");
-  a.href = URL.createObjectURL(blob);
-  a.download = "kappa-path.svg";
-  a.click();
-  URL.revokeObjectURL(a.href);
+
+function undo() { endDrag(); engine.undo(); refresh(); }
+function redo() { endDrag(); engine.redo(); refresh(); }
+$("undo").addEventListener("click", undo);
+$("redo").addEventListener("click", redo);
+$("fit").addEventListener("click", fit);
+$("clear").addEventListener("click", () => {
+  if (!engine.clear()) return;
+  ui.sel = null;
+  refresh();
+  ui.message = "cleared: Undo brings the drawing back";
+  status();
 });
 
-document.addEventListener("keydown", (e) => {
-  if (e.target instanceof HTMLInputElement || e.target instanceof HTMLSelectElement) return;
-  const mod = e.ctrlKey || e.metaKey;
-  if (mod && e.key.toLowerCase() === "z") {
-    if (e.shiftKey) engine.redo(); else engine.undo();
-    refresh();
-    e.preventDefault();
-  } else if (mod && e.key.toLowerCase() === "y") {
-    engine.redo();
-    refresh();
-    e.preventDefault();
-  } else if (e.key === "Delete" || e.key === "Backspace") {
-    deleteSelected();
-  } else if (e.key === "c" && ui.selected >= 0) {
-    engine.toggleCorner(ui.selected);
-    refresh();
+function download(text, name, type) {
+  const blob = new Blob([text], { type });
+  const a = document.createElement("a");
+  a.href = URL.createObjectURL(blob);
+  a.download = name;
+  a.click();
+  setTimeout(() => URL.revokeObjectURL(a.href), 0);
+}
+
+// The SVG export: the drawing in its own coordinates, on a page that holds it.
+function svgText() {
+  const b = engine.bounds();
+  const w = b ? Math.ceil(Math.max(b.x1, 0) + 20) : Math.round(W);
+  const h = b ? Math.ceil(Math.max(b.y1, 0) + 20) : Math.round(H);
+  return engine.exportSvg(w, h, true);
+}
+function save() { download(engine.save(), "drawing.kappa.json", "application/json"); }
+$("save").addEventListener("click", save);
+$("export").addEventListener("click", () => download(svgText(), "drawing.svg", "image/svg+xml"));
+
+// Opens a drawing from text (a file, a drop or a paste): an undoable step.
+function openText(text) {
+  endDrag();
+  const r = engine.open(text, true);
+  if (r < 0) {
+    ui.message = `not opened: ${engine.lastError()}`;
+    status();
+    return false;
+  }
+  ui.sel = null;
+  refresh();
+  fit();
+  return true;
+}
+$("open").addEventListener("change", async (e) => {
+  const file = e.target.files[0];
+  e.target.value = "";
+  if (file) openText(await file.text());
+});
+window.addEventListener("dragover", (e) => e.preventDefault());
+window.addEventListener("drop", async (e) => {
+  e.preventDefault();
+  const file = e.dataTransfer.files[0];
+  if (file) openText(await file.text());
+  else {
+    const text = e.dataTransfer.getData("text/plain");
+    if (text) openText(text);
   }
 });
+
+const isTextField = (t) => t instanceof HTMLTextAreaElement || !!t?.isContentEditable ||
+  (t instanceof HTMLInputElement &&
+    !["checkbox", "radio", "range", "button", "submit", "reset", "file", "color"].includes(t.type));
+
+document.addEventListener("paste", (e) => {
+  if (isTextField(e.target)) return;
+  const text = e.clipboardData?.getData("text/plain") ?? "";
+  const t = text.trim();
+  if (t.startsWith("{") || t.startsWith("[") || t.startsWith("<")) {
+    e.preventDefault();
+    openText(text);
+  }
+});
+
+// ---- Keyboard: wherever the focus is, except in a text field ----
+
+function nudge(dx, dy) {
+  const sel = selection();
+  if (!sel) return false;
+  const p = engine.points(sel.contour)[sel.index];
+  engine.setActive(sel.contour);
+  engine.movePoint(sel.index, p.x + dx, p.y + dy);
+  refresh();
+  return true;
+}
+
+const ARROWS = { ArrowLeft: [-1, 0], ArrowRight: [1, 0], ArrowUp: [0, -1], ArrowDown: [0, 1] };
+
+document.addEventListener("keydown", (e) => {
+  if (isTextField(e.target)) return;
+  const mod = e.ctrlKey || e.metaKey;
+  const key = e.key.length === 1 ? e.key.toLowerCase() : e.key;
+  let handled = true;
+  if (mod && !e.altKey && key === "z") {
+    if (e.shiftKey) redo(); else undo();
+  } else if (mod && !e.altKey && key === "y") {
+    redo();
+  } else if (mod && !e.altKey && key === "s") {
+    save();
+  } else if (mod && !e.altKey && key === "0") {
+    fit();
+  } else if (mod || e.altKey) {
+    // Copy, paste and every other browser shortcut pass through.
+    handled = false;
+  } else if (key === "Escape") {
+    if (ui.drag) handled = false; else escape();
+  } else if (key === "Delete" || key === "Backspace") {
+    deleteSelected();
+  } else if (key in ARROWS) {
+    const step = e.shiftKey ? 10 : 1;
+    handled = nudge(ARROWS[key][0] * step, ARROWS[key][1] * step);
+  } else if (key === "c") {
+    toggleCorner();
+  } else if (key === "f") {
+    fit();
+  } else if (key === " ") {
+    ui.space = true;
+    canvas.classList.add("pan");
+  } else {
+    handled = false;
+  }
+  if (handled) e.preventDefault();
+});
+document.addEventListener("keyup", (e) => {
+  if (e.key === " ") {
+    ui.space = false;
+    if (!ui.pan) canvas.classList.remove("pan");
+  }
+});
+window.addEventListener("blur", () => { ui.space = false; canvas.classList.remove("pan"); });
+window.addEventListener("pagehide", saveNow);
+
+// ---- The page's API (used by the browser test; handy from the console too) ----
 
 // Summary statistics of per-update times (ms).
 function stats(times, total) {
@@ -242,47 +708,87 @@ function stats(times, total) {
   };
 }
 
-// The page's API (used by the browser test; handy from the console too).
+// The contour an API call means by default: the active one, else the first.
+const current = () => Math.max(0, engine.active());
+const edit = (f) => { const r = f(); refresh(); return r; };
+
 window.kappa = {
   engine,
-  reset(scheme = "ek-cubic") { engine.reset(scheme); ui.selected = -1; refresh(); },
-  points: () => engine.points(),
-  pieces: () => engine.pieces(),
+  reset(scheme = "ek-cubic") {
+    engine.reset(scheme);
+    ui.sel = null;
+    Object.assign(view, { scale: 1, tx: 0, ty: 0 });
+    refresh();
+  },
+  contours: () => engine.contourCount(),
+  active: () => engine.active(),
+  setActive(k) { select(k, -1); refresh({ keepMessage: true }); },
+  points: (k = current()) => engine.points(k),
+  pieces: (k = current()) => engine.pieces(k),
   scheme: () => engine.scheme(),
-  closed: () => engine.closed(),
-  addPoint(x, y) { const e = engine.addPoint(x, y); refresh(); return e; },
-  insertPoint(x, y) { const i = engine.insertPoint(x, y); refresh(); return i; },
+  closed: (k = current()) => engine.closed(k),
+  addPoint: (x, y) => edit(() => engine.addPoint(x, y)),
+  startContour: (x, y) => edit(() => engine.startContour(x, y)),
+  insertPoint: (x, y) => edit(() => engine.insertPoint(x, y)),
   drag(i, x, y) { const e = engine.dragPoint(i, x, y); draw(); return e; },
   endDrag() { engine.endDrag(); refresh(); },
-  movePoint(i, x, y) { const e = engine.movePoint(i, x, y); refresh(); return e; },
-  deletePoint(i) { const e = engine.deletePoint(i); refresh(); return e; },
-  setShape(i, a) { const e = engine.setShape(i, a); refresh(); return e; },
-  toggleCorner(i) { const e = engine.toggleCorner(i); refresh(); return e; },
-  setClosed(c) { const e = engine.setClosed(c); refresh(); return e; },
-  setScheme(s) { const e = engine.setScheme(s); refresh(); return e; },
-  undo() { const r = engine.undo(); refresh(); return r; },
-  redo() { const r = engine.redo(); refresh(); return r; },
-  select(i) { ui.selected = i; refresh(); },
-  selected: () => ui.selected,
+  movePoint: (i, x, y) => edit(() => engine.movePoint(i, x, y)),
+  deletePoint: (i) => edit(() => engine.deletePoint(i)),
+  setShape: (i, a) => edit(() => engine.setShape(i, a)),
+  toggleCorner: (i) => edit(() => engine.toggleCorner(i)),
+  setClosed: (c) => edit(() => engine.setClosed(c)),
+  setScheme: (s) => edit(() => engine.setScheme(s)),
+  deleteContour: (k) => edit(() => engine.deleteContour(k)),
+  clear: () => edit(() => engine.clear()),
+  undo: () => edit(() => engine.undo()),
+  redo: () => edit(() => engine.redo()),
+  select(k, i) { select(k, i); refresh({ keepMessage: true }); },
+  selected: () => (ui.sel ? ui.sel.index : -1),
+  selection: () => ui.sel,
   setComb(on) { ui.comb = on; $("comb").checked = on; draw(); },
-  evalCurve: (piece, seg, t) => engine.evalCurve(piece, seg, t),
+  evalCurve: (k, piece, seg, t) => engine.evalCurve(k, piece, seg, t),
   hit: (x, y) => engine.hit(x, y),
   pathElements: () => pathElements(engine.pathData()),
-  exportSvg: (withPoints = true) => engine.exportSvg(W, H, withPoints),
+  // The comb's teeth as drawn ([base, tip] pairs in doc coordinates) and its scale.
+  comb() {
+    const els = pathElements(engine.combData(combLength(), COMB_PERCENTILE, COMB_CLIP,
+      combSamples(totalPoints())));
+    const teeth = [];
+    for (let i = 0; i + 1 < els.length; i++) {
+      const [a, b] = [els[i], els[i + 1]];
+      // A tooth: a move to the base then a line to the tip, the next element a move again.
+      if (a[0] === 0 && b[0] === 1 && (i + 2 >= els.length || els[i + 2][0] === 0)) {
+        teeth.push([{ x: a[1], y: a[2] }, { x: b[1], y: b[2] }]);
+      }
+    }
+    return { teeth, scale: engine.combScale(), length: combLength() };
+  },
+  exportSvg: () => svgText(),
+  save: () => engine.save(),
+  open: (text) => openText(text),
   lastError: () => engine.lastError(),
   status: () => $("status").textContent,
+  view: () => ({ ...view, width: W, height: H }),
+  setView(v) { Object.assign(view, v); draw(); status(); },
+  fit,
+  toScreen,
+  saveNow,
 
-  // Drag latency measured here in the page: `updates` drag updates of point `index`, back
-  // and forth by up to `amplitude` px like a hand (one gesture). Each update is the move, the
-  // warm re-solve, the path and the curvature comb written to wasm memory and viewed from
-  // JavaScript; with `draw`, also the canvas drawing of path, comb and points, rasterized
-  // (a pixel read back). Times in ms.
+  // Drag latency measured here in the page: `updates` drag updates of point `index` of the
+  // active contour, back and forth by up to `amplitude` px like a hand (one gesture). Each
+  // update is the move, the warm re-solve, the path and the curvature comb written to wasm
+  // memory and viewed from JavaScript; with `draw`, also the canvas drawing of path, comb
+  // and points, rasterized (a pixel read back). Times in ms.
   benchDrag({ index = 30, updates = 1000, amplitude = 1.25, draw: withDraw = false } = {}) {
-    const base = engine.points()[index];
+    if (engine.active() < 0) engine.setActive(0);
+    const base = engine.points(engine.active())[index];
+    const length = combLength();
+    const samples = combSamples(totalPoints());
+    draw();
     const scale = ui.combScale;
-    const samples = combSamples(engine.pointCount());
     const times = new Float64Array(updates);
     let errors = 0, iterations = 0, sink = 0;
+    ui.drag = { id: -1, contour: engine.active(), index };
     const start = performance.now();
     for (let k = 1; k <= updates; k++) {
       const off = amplitude * ((k % 8) / 4 - 1);
@@ -294,12 +800,13 @@ window.kappa = {
         ctx.getImageData(0, 0, 1, 1);
       } else {
         sink += engine.pathData().length;
-        sink += engine.combData(scale, samples).length;
+        sink += engine.combData(length, COMB_PERCENTILE, COMB_CLIP, samples, scale).length;
       }
       times[k - 1] = performance.now() - t0;
       iterations += engine.lastIterations();
     }
     const total = performance.now() - start;
+    ui.drag = null;
     // The gesture is one undo step: undo it to leave the path as it was.
     engine.endDrag();
     engine.undo();
@@ -314,5 +821,20 @@ window.kappa = {
   },
 };
 
+// Start: the drawing and view kept in this browser, if any.
+new ResizeObserver(resize).observe(stage);
+resize();
+const kept = localStorage.getItem(STORAGE_KEY);
+if (kept) {
+  if (engine.open(kept, false) < 0) localStorage.removeItem(STORAGE_KEY);
+  try {
+    const v = JSON.parse(localStorage.getItem(VIEW_KEY) ?? "null");
+    if (v && [v.scale, v.tx, v.ty].every(Number.isFinite) && v.scale > 0) {
+      Object.assign(view, { scale: v.scale, tx: v.tx, ty: v.ty });
+    }
+  } catch {
+    // A view that does not parse is left at the default.
+  }
+}
 refresh();
 document.body.dataset.ready = "1";

@@ -1,4 +1,5 @@
-// Glue for the kappa path-tool engine compiled to wasm32-unknown-unknown (web/src/ffi.rs).
+// Glue for the kappa path-tool engine compiled to wasm32-unknown-unknown (web/src/ffi.rs):
+// a drawing of several contours with one undo history.
 // The module exports plain functions of numbers; results are read straight from its
 // memory. A view must be made after the call that filled the buffer (memory may grow).
 
@@ -38,6 +39,14 @@ export class Engine {
     this.x.kp_reset(code);
   }
 
+  // Contours: point edits go to the active one (-1: none; a click then starts one).
+  contourCount() { return this.x.kp_contour_count(); }
+  active() { return this.x.kp_active(); }
+  setActive(k) { this.x.kp_set_active(k < 0 ? 0xffffffff : k); }
+  startContour(x, y) { return this.x.kp_start_contour(x, y); }
+  deleteContour(k) { return this.x.kp_delete_contour(k) === 1; }
+  clear() { return this.x.kp_clear() === 1; }
+
   addPoint(x, y) { return this.x.kp_add_point(x, y); }
   insertPoint(x, y) { return this.x.kp_insert_point(x, y); }
   movePoint(i, x, y) { return this.x.kp_move_point(i, x, y); }
@@ -48,13 +57,20 @@ export class Engine {
   dragShape(i, a) { return this.x.kp_drag_shape(i, a); }
   toggleCorner(i) { return this.x.kp_toggle_corner(i); }
   setClosed(closed) { return this.x.kp_set_closed(closed ? 1 : 0); }
-  closed() { return this.x.kp_closed() === 1; }
+  closed(k) { return this.x.kp_closed(k) === 1; }
   undo() { return this.x.kp_undo() === 1; }
   redo() { return this.x.kp_redo() === 1; }
+  canUndo() { return this.x.kp_can_undo() === 1; }
+  canRedo() { return this.x.kp_can_redo() === 1; }
   lastIterations() { return this.x.kp_last_iterations(); }
-  pointCount() { return this.x.kp_point_count(); }
-  maxCurvature() { return this.x.kp_max_curvature(); }
-  nearestPoint(x, y, radius) { return this.x.kp_nearest_point(x, y, radius); }
+  pointCount(k) { return this.x.kp_point_count(k); }
+
+  // {contour, index} of the point nearest to (x, y) within `radius`, or null.
+  nearestPoint(x, y, radius) {
+    if (this.x.kp_nearest_point(x, y, radius) !== 2) return null;
+    const v = this.nums(2);
+    return { contour: v[0], index: v[1] };
+  }
 
   setScheme(scheme) {
     const code = SCHEMES.indexOf(scheme);
@@ -64,8 +80,8 @@ export class Engine {
 
   scheme() { return SCHEMES[this.x.kp_scheme()]; }
 
-  points() {
-    const n = this.x.kp_points();
+  points(k) {
+    const n = this.x.kp_points(k);
     const v = this.nums(n);
     const out = [];
     for (let i = 0; i < n; i += 4) {
@@ -74,11 +90,11 @@ export class Engine {
     return out;
   }
 
-  pieces() {
+  pieces(k) {
     const out = [];
-    const count = this.x.kp_piece_count();
-    for (let k = 0; k < count; k++) {
-      const v = this.nums(this.x.kp_piece(k));
+    const count = this.x.kp_piece_count(k);
+    for (let j = 0; j < count; j++) {
+      const v = this.nums(this.x.kp_piece(k, j));
       const m = v[2], n = v[3];
       out.push({
         closed: v[0] === 1,
@@ -90,9 +106,10 @@ export class Engine {
     return out;
   }
 
-  // The exact curve: {x, y, curvature} of segment `seg` of piece `piece` at `t`, or null.
-  evalCurve(piece, seg, t) {
-    const n = this.x.kp_eval(piece, seg, t);
+  // The exact curve: {x, y, curvature} of segment `seg` of piece `piece` of contour `k` at
+  // `t`, or null.
+  evalCurve(k, piece, seg, t) {
+    const n = this.x.kp_eval(k, piece, seg, t);
     if (n !== 3) return null;
     const v = this.nums(3);
     return { x: v[0], y: v[1], curvature: v[2] };
@@ -100,9 +117,16 @@ export class Engine {
 
   hit(x, y) {
     const n = this.x.kp_hit(x, y);
-    if (n !== 6) return null;
-    const v = this.nums(6);
-    return { piece: v[0], segment: v[1], t: v[2], x: v[3], y: v[4], distance: v[5] };
+    if (n !== 7) return null;
+    const v = this.nums(7);
+    return { contour: v[0], piece: v[1], segment: v[2], t: v[3], x: v[4], y: v[5], distance: v[6] };
+  }
+
+  // The points' bounding box {x0, y0, x1, y1}, or null without points.
+  bounds() {
+    if (this.x.kp_bounds() !== 4) return null;
+    const v = this.nums(4);
+    return { x0: v[0], y0: v[1], x1: v[2], y1: v[3] };
   }
 
   // The encoded path and comb as Float64Array views (valid until the next engine call).
@@ -110,17 +134,36 @@ export class Engine {
     const n = this.x.kp_path();
     return this.f64(this.x.kp_path_ptr(), n);
   }
-  piecePathData(k) {
-    const n = this.x.kp_piece_path(k);
+  piecePathData(k, j) {
+    const n = this.x.kp_piece_path(k, j);
     return this.f64(this.x.kp_path_ptr(), n);
   }
-  combData(scale, samples) {
-    const n = this.x.kp_comb(scale, samples);
+  previewData(x, y) {
+    const n = this.x.kp_preview(x, y);
+    return this.f64(this.x.kp_path_ptr(), n);
+  }
+  // The comb: teeth `length` long at the `percentile` of |κ|, cut at `clip` × length; a
+  // positive `scale` fixes the scale instead. combScale() gives the scale used.
+  combData(length, percentile, clip, samples, scale = 0) {
+    const n = this.x.kp_comb(length, percentile, clip, samples, scale);
     return this.f64(this.x.kp_comb_ptr(), n);
   }
+  combScale() { return this.x.kp_comb_scale(); }
 
-  exportSvg(width, height, withPoints) {
-    return this.text(this.x.kp_export_svg(width, height, withPoints ? 1 : 0));
+  exportSvg(width, height, fill) {
+    return this.text(this.x.kp_export_svg(width, height, fill ? 1 : 0));
+  }
+
+  save() { return this.text(this.x.kp_save()); }
+
+  // Opens a drawing file, a single path's file or an exported SVG: the number of pieces that
+  // failed to solve, or -1 if it did not open (lastError() says why).
+  open(text, undoable = true) {
+    const bytes = new TextEncoder().encode(text);
+    const ptr = this.x.kp_input(bytes.length);
+    new Uint8Array(this.x.memory.buffer, ptr, bytes.length).set(bytes);
+    const r = this.x.kp_open(undoable ? 1 : 0);
+    return r < 0 ? -1 : r; // u32::MAX arrives as -1 (wasm i32)
   }
 
   lastError() { return this.text(this.x.kp_last_error()); }
