@@ -61,7 +61,7 @@ pub use file::{extract_svg_document, import_svg_paths, DrawingDoc, SVG_METADATA_
 #[cfg(feature = "render")]
 pub use svg::import_svg;
 
-use kurbo::{BezPath, Point};
+use kurbo::{BezPath, Point, Vec2};
 
 use crate::fit::{FitMethod, FitOptions};
 use crate::{Error, Scheme, Segment, Shape, SolveOptions, SolvedState, Solver, Spline};
@@ -79,6 +79,23 @@ pub struct EditPoint {
     /// A corner: the path has a tangent break here.
     #[cfg_attr(feature = "serde", serde(default))]
     pub corner: bool,
+    /// A prescribed tangent direction (any length but zero): the curve leaves the point
+    /// along it ([`Solver::solve_with_tangents`]). At a corner it is the direction of the
+    /// piece that starts there; [`EditPoint::tangent_in`] is the other side's. A smooth join
+    /// of a line and a curve is a corner whose tangent on the curve's side runs along the
+    /// line.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub tangent: Option<[f64; 2]>,
+    /// At a corner, the prescribed direction in which the piece that ends there arrives
+    /// (ignored elsewhere).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub tangent_in: Option<[f64; 2]>,
 }
 
 impl EditPoint {
@@ -400,6 +417,8 @@ impl Editor {
                 y: p.y,
                 shape,
                 corner: false,
+                tangent: None,
+                tangent_in: None,
             });
             Touched::Structure
         })
@@ -449,6 +468,8 @@ impl Editor {
                     y: hit.point.y,
                     shape,
                     corner: false,
+                    tangent: None,
+                    tangent_in: None,
                 },
             );
             Touched::Structure
@@ -560,6 +581,24 @@ impl Editor {
         }
         self.edit(|doc| {
             doc.points[i].corner = !doc.points[i].corner;
+            Touched::Structure
+        })
+    }
+
+    /// Sets or clears point `i`'s prescribed tangent ([`EditPoint::tangent`]; `incoming`:
+    /// [`EditPoint::tangent_in`], the side of a corner where a piece ends). A zero or
+    /// non-finite vector is rejected ([`Change::rejected`]).
+    pub fn set_tangent(&mut self, i: usize, tangent: Option<Vec2>, incoming: bool) -> Change {
+        if i >= self.doc.points.len() {
+            return Change::default();
+        }
+        self.edit(|doc| {
+            let v = tangent.map(|v| [v.x, v.y]);
+            if incoming {
+                doc.points[i].tangent_in = v;
+            } else {
+                doc.points[i].tangent = v;
+            }
             Touched::Structure
         })
     }
@@ -790,20 +829,26 @@ impl Editor {
             max_iterations,
             ..full
         });
-        // Warm only from a solver whose last solve succeeded (its state is that curve).
+        let tangents = piece_tangents(doc, &piece.spec);
+        // Warm only from a solver whose last solve succeeded (its state is that curve; a
+        // warm re-solve keeps the tangents of that solve, and a change of tangents is a
+        // structural edit, which solves cold).
         let solved = piece.spline.is_some() && piece.error.is_none();
+        let closed = piece.spec.closed;
         let result = match how {
             Resolve::Positions if solved => piece.solver.resolve(&pts),
             Resolve::Shapes if solved => piece.solver.resolve_shapes(doc.scheme, &shape),
-            _ => match piece.start.take() {
-                Some(start) => {
-                    piece
-                        .solver
-                        .solve_from(&pts, piece.spec.closed, doc.scheme, &shape, &start)
-                }
-                None => piece
+            _ => match (piece.start.take(), tangents) {
+                (Some(start), None) => piece
                     .solver
-                    .solve(&pts, piece.spec.closed, doc.scheme, &shape),
+                    .solve_from(&pts, closed, doc.scheme, &shape, &start),
+                (None, None) => piece.solver.solve(&pts, closed, doc.scheme, &shape),
+                (Some(start), Some(t)) => piece
+                    .solver
+                    .solve_with_tangents_from(&pts, closed, doc.scheme, &shape, &t, &start),
+                (None, Some(t)) => piece
+                    .solver
+                    .solve_with_tangents(&pts, closed, doc.scheme, &shape, &t),
             },
         };
         change.resolved.push(k);
@@ -989,11 +1034,46 @@ impl Editor {
     }
 }
 
-/// The first non-finite coordinate or shape of a document, as an error.
+/// The prescribed tangents of a piece's points (`None` if it has none): at a piece's first
+/// point its outgoing [`EditPoint::tangent`]; at an open piece's last point that is a
+/// corner, its [`EditPoint::tangent_in`]; elsewhere [`EditPoint::tangent`].
+fn piece_tangents(doc: &PathDoc, spec: &PieceSpec) -> Option<Vec<Option<Vec2>>> {
+    let m = spec.indices.len();
+    let tangents: Vec<Option<Vec2>> = spec
+        .indices
+        .iter()
+        .enumerate()
+        .map(|(k, &i)| {
+            let p = &doc.points[i];
+            let t = if !spec.closed && k + 1 == m && k > 0 && p.corner {
+                p.tangent_in
+            } else {
+                p.tangent
+            };
+            t.map(|[x, y]| Vec2::new(x, y))
+        })
+        .collect();
+    tangents.iter().any(Option::is_some).then_some(tangents)
+}
+
+/// What is wrong with a prescribed tangent, if anything.
+fn tangent_problem(v: [f64; 2]) -> Option<&'static str> {
+    let len = v[0].hypot(v[1]);
+    (!(len > 0.0 && len.is_finite())).then_some("a tangent must be a nonzero, finite vector")
+}
+
+/// The first non-finite coordinate or shape of a document, or unusable tangent, as an
+/// error.
 fn non_finite(doc: &PathDoc) -> Option<Error> {
     doc.points.iter().enumerate().find_map(|(index, p)| {
         if !(p.x.is_finite() && p.y.is_finite()) {
             Some(Error::NonFinitePoint { index })
+        } else if let Some(reason) = [p.tangent, p.tangent_in]
+            .into_iter()
+            .flatten()
+            .find_map(tangent_problem)
+        {
+            Some(Error::InvalidTangent { index, reason })
         } else if !p.shape.is_finite() {
             let (min, max) = doc.scheme.shape_range();
             Some(Error::ShapeOutOfRange {
@@ -1066,6 +1146,8 @@ mod tests {
                     y: (i * i) as f64,
                     shape: 0.8,
                     corner: corners.contains(&i),
+                    tangent: None,
+                    tangent_in: None,
                 })
                 .collect(),
             closed,
