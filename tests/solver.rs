@@ -237,7 +237,7 @@ fn raising_one_points_shape_sharpens_that_point() {
 }
 
 #[test]
-fn warm_resolve_matches_cold_solve_and_is_cheaper() {
+fn warm_resolve_matches_cold_solve() {
     let pts: Vec<Point> = (0..50)
         .map(|i| {
             let th = i as f64 / 50.0 * std::f64::consts::TAU;
@@ -263,34 +263,8 @@ fn warm_resolve_matches_cold_solve_and_is_cheaper() {
             }
         }
         check_spline(&warm, &moved, true, 260.0, "warm");
-        // Cheaper: the warm re-solve iterates on a window around the moved point (chord
-        // steps there), so its iterations are not comparable with a cold solve's; the time
-        // is. The fastest of several runs of each, every warm one from the solution of the
-        // unmoved points.
-        let fastest = |f: &mut dyn FnMut() -> std::time::Duration| (0..7).map(|_| f()).min();
-        let cold_time = fastest(&mut || {
-            let t = std::time::Instant::now();
-            let c = Solver::new()
-                .solve(&moved, true, scheme, &shape_of(scheme, a))
-                .unwrap();
-            let time = t.elapsed();
-            assert!(c.converged());
-            time
-        });
-        let warm_time = fastest(&mut || {
-            solver
-                .solve(&pts, true, scheme, &shape_of(scheme, a))
-                .unwrap();
-            let t = std::time::Instant::now();
-            let w = solver.resolve(&moved).unwrap();
-            let time = t.elapsed();
-            assert!(w.converged());
-            time
-        });
-        assert!(
-            warm_time < cold_time,
-            "{scheme:?}: warm {warm_time:?}, cold {cold_time:?}"
-        );
+        // (How much cheaper the warm re-solve is, is measured in `benches/solve.rs`: a
+        // time, which a test does not assert.)
     }
 }
 
