@@ -821,7 +821,9 @@ pub struct SolverN<P, const D: usize, const B: usize> {
     /// Prescribed tangent directions by input point (empty: none), as given.
     tangents: Vec<Option<[f64; D]>>,
     /// The last free curve (no tangents) solved cold, by its input: a solve with tangents
-    /// of the same input turns its directions from there without solving it again.
+    /// of the same input turns its directions from there without solving it again. Kept
+    /// only once this solver has solved with tangents (a copy per cold solve otherwise
+    /// costs the bear 3 % more instructions).
     free: Option<FreeCurve<D>>,
     _marker: core::marker::PhantomData<P>,
 }
@@ -1457,6 +1459,10 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
     /// The cold solve: the cascade of [`Workspace::solve_cold`], or with tangents
     /// [`Workspace::solve_cold_tangents`].
     fn cold(&mut self, settings: &Settings) -> Outcome {
+        if self.prob.tangents.is_empty() && self.free.is_none() {
+            // A solver that has not held tangents keeps no free curve.
+            return self.ws.solve_cold(&self.prob, settings, &mut self.scratch);
+        }
         let input = (&self.points, self.prob.closed, &self.prob.basis);
         let cached = self.free.take().filter(|f| f.input() == input);
         if self.prob.tangents.is_empty() {
