@@ -302,6 +302,19 @@ impl Drawing {
         self.record(k, |e| e.set_tangent(i, tangent, incoming))
     }
 
+    /// Sets the prescribed tangent of point `i` of contour `k` within a handle drag (see
+    /// [`Editor::drag_tangent`]).
+    pub fn drag_tangent(
+        &mut self,
+        k: usize,
+        i: usize,
+        tangent: kurbo::Vec2,
+        incoming: bool,
+    ) -> Change {
+        self.end_other_drags(k);
+        self.record(k, |e| e.drag_tangent(i, tangent, incoming))
+    }
+
     /// Makes corner `i` of contour `k` a smooth line-to-curve join (see
     /// [`Editor::set_smooth_join`]).
     pub fn set_smooth_join(&mut self, k: usize, i: usize) -> Change {

@@ -343,6 +343,8 @@ enum Gesture {
     Point(usize),
     /// The point's shape (a slider).
     Shape(usize),
+    /// The point's prescribed tangent (`true`: the incoming one), by its handle.
+    Tangent(usize, bool),
 }
 
 impl Editor {
@@ -594,6 +596,24 @@ impl Editor {
                 doc.points[i].tangent = v;
             }
             Touched::Structure
+        })
+    }
+
+    /// Sets point `i`'s prescribed tangent as one update of a handle drag: like
+    /// [`Editor::set_tangent`], with the undo steps of [`Editor::drag_point`] (consecutive
+    /// updates of the same handle are one step, until [`Editor::end_drag`]).
+    pub fn drag_tangent(&mut self, i: usize, tangent: Vec2, incoming: bool) -> Change {
+        if i >= self.doc.points.len() {
+            return Change::default();
+        }
+        self.gesture(Gesture::Tangent(i, incoming), |doc| {
+            let v = Some([tangent.x, tangent.y]);
+            if incoming {
+                doc.points[i].tangent_in = v;
+            } else {
+                doc.points[i].tangent = v;
+            }
+            Touched::Tangents(vec![i])
         })
     }
 
@@ -1281,6 +1301,14 @@ mod tests {
         assert!(e.errors().is_empty() && leaves(&e) < 1e-6);
         assert!(e.undo());
         assert_eq!(e.doc().points[1].tangent, Some([0.0, 1.0]));
+        // A handle drag is one undo step.
+        for k in 1..=4 {
+            e.drag_tangent(2, Vec2::new(1.0, -0.1 * k as f64), false);
+        }
+        e.end_drag();
+        assert_eq!(e.doc().points[2].tangent, Some([1.0, -0.4]));
+        assert!(e.undo());
+        assert_eq!(e.doc().points[2].tangent, None);
         // A tangent set by hand off the line is left alone.
         e.set_tangent(1, Some(Vec2::new(0.1, 1.0)), false);
         e.move_point(0, Point::new(10.0, 0.0));
