@@ -1043,6 +1043,19 @@ test("phone: 390×844 layout, touch taps and drags, two-finger pinch", async () 
   const v = await phone.evaluate(() => window.kappa.view());
   assert.ok(Math.abs(v.scale - 2) < 1e-9, `pinch scale ${v.scale}`);
   assert.equal(await phone.evaluate(() => window.kappa.save()), before);
+  // A finger drags the selected point's tangent handle: one undo step.
+  await phone.evaluate(() => { window.kappa.setView({ scale: 1, tx: 0, ty: 0 }); window.kappa.select(0, 2); });
+  const [h] = await phone.evaluate(() => window.kappa.handles());
+  const untangented = await phone.evaluate(() => window.kappa.save());
+  await touch("touchStart", [[h.knob.x, h.knob.y]]);
+  for (let i = 1; i <= 4; i++) await touch("touchMove", [[h.knob.x, h.knob.y + i]]);
+  await touch("touchEnd", []);
+  const tan = await phone.evaluate(() => window.kappa.tangents(0)[2].out);
+  assert.ok(tan, "the touch drag set no tangent");
+  assert.equal(await phone.evaluate(() => window.kappa.points(0).length), 5);
+  fs.writeFileSync(path.join(OUT, "web-phone-tangent.png"), await phone.screenshot());
+  await phone.evaluate(() => window.kappa.undo());
+  assert.equal(await phone.evaluate(() => window.kappa.save()), untangented);
   fs.writeFileSync(path.join(OUT, "web-phone.png"), await phone.screenshot());
   const st = await phone.evaluate(() => window.kappa.status());
   assert.ok(!/NaN/.test(st), st);
