@@ -245,6 +245,8 @@ enum Touched {
     Positions(Vec<usize>),
     /// The shapes (or the scheme) of these points (the same pieces).
     Shapes(Vec<usize>),
+    /// Positions and prescribed tangents of these points (the same pieces, solved cold).
+    Tangents(Vec<usize>),
     /// Anything else: the pieces are re-cut.
     Structure,
 }
@@ -341,6 +343,8 @@ enum Gesture {
     Point(usize),
     /// The point's shape (a slider).
     Shape(usize),
+    /// The point's prescribed tangent (`true`: the incoming one), by its handle.
+    Tangent(usize, bool),
 }
 
 impl Editor {
@@ -483,11 +487,7 @@ impl Editor {
         if i >= self.doc.points.len() {
             return Change::default();
         }
-        self.edit(|doc| {
-            doc.points[i].x = p.x;
-            doc.points[i].y = p.y;
-            Touched::Positions(vec![i])
-        })
+        self.edit(|doc| move_keeping_joins(doc, i, p))
     }
 
     /// Moves point `i` to `p` as one update of a drag gesture: like [`Editor::move_point`],
@@ -500,11 +500,7 @@ impl Editor {
         if i >= self.doc.points.len() {
             return Change::default();
         }
-        self.gesture(Gesture::Point(i), |doc| {
-            doc.points[i].x = p.x;
-            doc.points[i].y = p.y;
-            Touched::Positions(vec![i])
-        })
+        self.gesture(Gesture::Point(i), |doc| move_keeping_joins(doc, i, p))
     }
 
     /// Sets the shape of point `i` as one update of a slider drag: like
@@ -601,6 +597,38 @@ impl Editor {
             }
             Touched::Structure
         })
+    }
+
+    /// Sets point `i`'s prescribed tangent as one update of a handle drag: like
+    /// [`Editor::set_tangent`], with the undo steps of [`Editor::drag_point`] (consecutive
+    /// updates of the same handle are one step, until [`Editor::end_drag`]).
+    pub fn drag_tangent(&mut self, i: usize, tangent: Vec2, incoming: bool) -> Change {
+        if i >= self.doc.points.len() {
+            return Change::default();
+        }
+        self.gesture(Gesture::Tangent(i, incoming), |doc| {
+            let v = Some([tangent.x, tangent.y]);
+            if incoming {
+                doc.points[i].tangent_in = v;
+            } else {
+                doc.points[i].tangent = v;
+            }
+            Touched::Tangents(vec![i])
+        })
+    }
+
+    /// Makes corner `i` a smooth line-to-curve join: where a straight segment is on one side
+    /// of it and a curve on the other ([`join_line`]), the curve side's tangent is set along
+    /// the line. Moving either point of the line keeps it along the line
+    /// ([`Editor::move_point`]). Elsewhere nothing changes ([`Change::rejected`]).
+    pub fn set_smooth_join(&mut self, i: usize) -> Change {
+        let Some((dir, incoming)) = join_line(&self.doc, i) else {
+            return Change {
+                rejected: true,
+                ..Change::default()
+            };
+        };
+        self.set_tangent(i, Some(dir), incoming)
     }
 
     /// Opens or closes the path.
@@ -717,6 +745,7 @@ impl Editor {
         let (points, how) = match touched {
             Touched::Positions(p) if same => (p, Resolve::Positions),
             Touched::Shapes(p) if same => (p, Resolve::Shapes),
+            Touched::Tangents(p) if same => (p, Resolve::Cold),
             _ => {
                 let saved = self.pieces.clone();
                 // The saved solutions are those of the old pieces (an unchanged piece starts
@@ -1034,6 +1063,94 @@ impl Editor {
     }
 }
 
+/// Whether the segment from point `c` to its neighbour `l` is straight (a piece of two
+/// points: two corners, or a corner and an open path's end).
+fn is_line(doc: &PathDoc, c: usize, l: usize) -> bool {
+    let n = doc.points.len();
+    let end = !doc.closed && (l == 0 || l + 1 == n);
+    doc.points[c].corner && (doc.points[l].corner || end)
+}
+
+/// The neighbours of point `i` (before, after), cyclically in a closed path.
+fn neighbours(doc: &PathDoc, i: usize) -> (Option<usize>, Option<usize>) {
+    let n = doc.points.len();
+    let closed = doc.closed && n >= 3;
+    let prev = if i > 0 {
+        Some(i - 1)
+    } else {
+        closed.then_some(n - 1)
+    };
+    let next = if i + 1 < n {
+        Some(i + 1)
+    } else {
+        closed.then_some(0)
+    };
+    (prev, next)
+}
+
+/// At corner `c` with a straight segment on one side and a curve on the other: the line's
+/// direction (unit, in the direction of travel) and which tangent of `c` the curve side
+/// takes (`true`: [`EditPoint::tangent_in`], the curve arrives and the line leaves;
+/// `false`: [`EditPoint::tangent`], the line arrives and the curve leaves). `None`
+/// elsewhere.
+pub fn join_line(doc: &PathDoc, c: usize) -> Option<(Vec2, bool)> {
+    if c >= doc.points.len() || !doc.points[c].corner {
+        return None;
+    }
+    let (Some(prev), Some(next)) = neighbours(doc, c) else {
+        return None;
+    };
+    let at = doc.points[c].point();
+    let (dir, incoming) = match (is_line(doc, c, prev), is_line(doc, c, next)) {
+        (true, false) => (at - doc.points[prev].point(), false),
+        (false, true) => (doc.points[next].point() - at, true),
+        _ => return None,
+    };
+    let len = dir.hypot();
+    (len > 0.0 && len.is_finite()).then(|| (dir / len, incoming))
+}
+
+/// Whether corner `c` is a smooth join: its curve side's tangent runs along the line
+/// (within 1e-6 rad, see [`join_line`]).
+fn is_smooth_join(doc: &PathDoc, c: usize) -> Option<bool> {
+    let (dir, incoming) = join_line(doc, c)?;
+    let p = &doc.points[c];
+    let [x, y] = if incoming { p.tangent_in } else { p.tangent }?;
+    let t = Vec2::new(x, y);
+    let len = t.hypot();
+    let along = len > 0.0 && t.dot(dir) > 0.0 && (t.cross(dir) / len).abs() < 1e-6;
+    along.then_some(incoming)
+}
+
+/// Moves point `i` to `p`, keeping the smooth joins at `i` and its neighbours along their
+/// lines (their tangents follow the line's new direction).
+fn move_keeping_joins(doc: &mut PathDoc, i: usize, p: Point) -> Touched {
+    let (prev, next) = neighbours(doc, i);
+    let joins: Vec<(usize, bool)> = [prev, Some(i), next]
+        .into_iter()
+        .flatten()
+        .filter_map(|c| is_smooth_join(doc, c).map(|incoming| (c, incoming)))
+        .collect();
+    doc.points[i].x = p.x;
+    doc.points[i].y = p.y;
+    if joins.is_empty() {
+        return Touched::Positions(vec![i]);
+    }
+    let mut touched = vec![i];
+    for (c, incoming) in joins {
+        if let Some((dir, _)) = join_line(doc, c) {
+            let v = Some([dir.x, dir.y]);
+            if incoming {
+                doc.points[c].tangent_in = v;
+            } else {
+                doc.points[c].tangent = v;
+            }
+            touched.push(c);
+        }
+    }
+    Touched::Tangents(touched)
+}
+
 /// The prescribed tangents of a piece's points (`None` if it has none): at a piece's first
 /// point its outgoing [`EditPoint::tangent`]; at an open piece's last point that is a
 /// corner, its [`EditPoint::tangent_in`]; elsewhere [`EditPoint::tangent`].
@@ -1154,6 +1271,48 @@ mod tests {
             scheme: Scheme::EkCubic,
             solution: Vec::new(),
         }
+    }
+
+    #[test]
+    fn smooth_joins_follow_their_line() {
+        // An n shoulder: a stem (0 to 1) and an arch leaving its top along it.
+        let pts = [(0.0, 0.0), (0.0, 400.0), (120.0, 500.0), (250.0, 420.0)];
+        let mut e = Editor::new(Scheme::Kappa);
+        for (x, y) in pts {
+            e.add_point(Point::new(x, y));
+        }
+        e.toggle_corner(1);
+        assert!(e.set_smooth_join(2).rejected);
+        assert!(!e.set_smooth_join(1).rejected);
+        assert_eq!(e.doc().points[1].tangent, Some([0.0, 1.0]));
+        let leaves = |e: &Editor| {
+            let d = e.piece_spline(1).unwrap().segments()[0].derivative(0.0);
+            let [x, y] = e.doc().points[1].tangent.unwrap();
+            (d.cross(Vec2::new(x, y)) / d.hypot()).abs()
+        };
+        assert!(e.errors().is_empty() && leaves(&e) < 1e-6);
+        // Moving the line's other end turns the tangent with it, in the same undo step.
+        for k in 1..=5 {
+            e.drag_point(0, Point::new(4.0 * k as f64, 0.0));
+        }
+        e.end_drag();
+        let [x, y] = e.doc().points[1].tangent.unwrap();
+        assert!((Vec2::new(x, y).cross(Vec2::new(-20.0, 400.0))).abs() < 1e-9);
+        assert!(e.errors().is_empty() && leaves(&e) < 1e-6);
+        assert!(e.undo());
+        assert_eq!(e.doc().points[1].tangent, Some([0.0, 1.0]));
+        // A handle drag is one undo step.
+        for k in 1..=4 {
+            e.drag_tangent(2, Vec2::new(1.0, -0.1 * k as f64), false);
+        }
+        e.end_drag();
+        assert_eq!(e.doc().points[2].tangent, Some([1.0, -0.4]));
+        assert!(e.undo());
+        assert_eq!(e.doc().points[2].tangent, None);
+        // A tangent set by hand off the line is left alone.
+        e.set_tangent(1, Some(Vec2::new(0.1, 1.0)), false);
+        e.move_point(0, Point::new(10.0, 0.0));
+        assert_eq!(e.doc().points[1].tangent, Some([0.1, 1.0]));
     }
 
     #[test]
