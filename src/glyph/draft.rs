@@ -605,9 +605,14 @@ fn control_box(seg: &PathSeg) -> Rect {
 
 /// The point of a piece at position `s` (segment index + t).
 fn eval_at(segs: &[PathSeg], s: f64) -> Point {
-    let n = segs.len();
-    let i = (s.floor().max(0.0) as usize).min(n - 1);
-    segs[i].eval((s - i as f64).clamp(0.0, 1.0))
+    let (i, t) = locate(segs, s);
+    segs[i].eval(t)
+}
+
+/// The segment and parameter of position `s` along `segs` (clamped to them).
+fn locate(segs: &[PathSeg], s: f64) -> (usize, f64) {
+    let i = (s.floor().max(0.0) as usize).min(segs.len() - 1);
+    (i, (s - i as f64).clamp(0.0, 1.0))
 }
 
 /// |κ| of a piece at position `s`; at a joint, the mean of both sides.
@@ -843,9 +848,7 @@ fn finish(anchors: &[Cand], solved: Solved, closed: bool, hausdorff: f64, tolera
 /// its direction of travel: the direction of a chord 1e-6 of a segment long (`None` where
 /// that has no length).
 fn direction_at(segs: &[PathSeg], s: f64) -> Option<Vec2> {
-    let n = segs.len();
-    let i = (s.floor().max(0.0) as usize).min(n - 1);
-    let t = (s - i as f64).clamp(0.0, 1.0);
+    let (i, t) = locate(segs, s);
     let (a, b) = if t < 1.0 {
         (segs[i].eval(t), segs[i].eval((t + 1e-6).min(1.0)))
     } else {
