@@ -97,16 +97,15 @@ fn random_walks_on_an_integer_grid() {
             closed.push((p, true));
         }
     }
-    // Measured: κ 99.0–99.7 %, εκ-cubic 100 %, εκ-trig 99.3 % (the target is 99.9 %).
-    // Nearly every failure doubles back (a hairpin): at most one other per scheme.
+    // Measured: every open walk converges in every scheme, and every closed one but a
+    // four-click loop that visits one click twice (a hairpin on its repeated click;
+    // docs/curves.md, "Known limits"). Before the continuation from smoothed clicks
+    // (`src/solver/points.rs`), κ converged on 298/300 open walks, εκ-trig on 297/300.
     for (what, cases) in [("grid walks, open", &open), ("grid walks, closed", &closed)] {
         let rates = rates(cases);
-        report(what, &rates, [0.98, 0.995, 0.98]);
+        report(what, &rates, [0.995, 0.995, 0.995]);
         for (&(scheme, _), &(_, _, other)) in SCHEMES.iter().zip(&rates) {
-            assert!(
-                other <= 1,
-                "{what}, {scheme:?}: {other} failures without a hairpin"
-            );
+            assert_eq!(other, 0, "{what}, {scheme:?}: failures without a hairpin");
         }
     }
 }

@@ -32,6 +32,7 @@ use crate::basis::{Basis, SegmentBasis, Stationarity};
 use crate::linalg::{solve_tridiagonal, BandLu, BorderedLu, DenseLu, SplitLu, TriScratch};
 use crate::parallel::join;
 
+mod points;
 mod tangent;
 mod window;
 
@@ -403,6 +404,8 @@ impl<const D: usize> JointTerms<D> {
 struct Homotopy {
     max_iterations: usize,
     min_step: f64,
+    /// Newton budget of one step.
+    step_budget: usize,
 }
 
 /// What a solve reports.
@@ -1262,16 +1265,27 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
     }
 
-    /// Solve from a cold start, trying in turn: Newton after a few classic iterations (3, 1,
-    /// then 12), and continuation in the shape parameters from each of [`A_HOMES`]. Every
-    /// attempt is capped; the total iteration count is reported, and the best state found is
-    /// kept if none converges.
+    /// Solve from a cold start: the [`cascade`](Self::cascade) of direct attempts and
+    /// shape continuations, then continuation from smoothed input points
+    /// ([`points`]) where all of those fail. The total iteration count is reported, and the
+    /// best state found is kept if nothing converges.
     pub(crate) fn solve_cold(
         &mut self,
         prob: &Problem<D>,
         set: &Settings,
         scratch: &mut Problem<D>,
     ) -> Outcome {
+        let out = self.cascade(prob, set, scratch);
+        if out.converged || out.iterations >= set.max_iterations {
+            return out;
+        }
+        self.point_continuation(prob, set, scratch, out)
+    }
+
+    /// Newton after a few classic iterations (3, 1, then 12), then continuation in the
+    /// shape parameters from each of [`A_HOMES`]. Every attempt is capped; the total
+    /// iteration count is reported, and the best state found is kept if none converges.
+    fn cascade(&mut self, prob: &Problem<D>, set: &Settings, scratch: &mut Problem<D>) -> Outcome {
         let mut total = 0;
         let mut best: Option<(Outcome, State<D>)> = None;
         let keep = |ws: &Self, out: Outcome, best: &mut Option<(Outcome, State<D>)>| {
@@ -1376,6 +1390,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let steps = Homotopy {
             max_iterations: set.max_iterations,
             min_step: MIN_STEP,
+            step_budget: STEP_BUDGET,
         };
         self.follow(prob, scratch, blend, budget, steps, total)
     }
@@ -1400,7 +1415,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         while s < 1.0 && total < steps.max_iterations && ds > steps.min_step {
             let s_try = (s + ds).min(1.0);
             blend(moving, s_try);
-            let step = self.solve(moving, &budget(total, STEP_BUDGET), 0, false);
+            let step = self.solve(moving, &budget(total, steps.step_budget), 0, false);
             total += step.iterations;
             if step.converged {
                 s = s_try;
@@ -1411,7 +1426,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 ds *= 0.5;
             }
         }
-        let fin = self.solve(prob, &budget(total, STEP_BUDGET), 0, false);
+        let fin = self.solve(prob, &budget(total, steps.step_budget), 0, false);
         Outcome {
             iterations: total + fin.iterations,
             ..fin

@@ -306,6 +306,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let steps = Homotopy {
             max_iterations: set.max_iterations,
             min_step: TANGENT_MIN_STEP,
+            step_budget: super::STEP_BUDGET,
         };
         self.follow(prob, &mut moving, blend, budget, steps, total)
     }
