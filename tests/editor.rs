@@ -546,7 +546,9 @@ fn document_round_trips_through_json() {
             x: 0.0,
             y: 0.0,
             shape: 0.7,
-            corner: false
+            corner: false,
+            tangent: None,
+            tangent_in: None,
         }
     );
 }
@@ -595,6 +597,8 @@ fn failing_sine(n: usize) -> PathDoc {
                 // Ignored by κ; εκ-cubic with it converges.
                 shape: 0.8,
                 corner: false,
+                tangent: None,
+                tangent_in: None,
             })
             .collect(),
         closed: false,
@@ -1025,4 +1029,93 @@ proptest! {
         }
         prop_assert_eq!(outline_of(&d), end);
     }
+}
+
+/// The largest distance between two paths of the same segments, sampled at 9 parameters.
+fn path_gap(a: &kurbo::BezPath, b: &kurbo::BezPath) -> f64 {
+    let (sa, sb): (Vec<_>, Vec<_>) = (a.segments().collect(), b.segments().collect());
+    assert_eq!(sa.len(), sb.len());
+    sa.iter()
+        .zip(&sb)
+        .flat_map(|(x, y)| {
+            (0..=8).map(move |i| (x.eval(i as f64 / 8.0) - y.eval(i as f64 / 8.0)).hypot())
+        })
+        .fold(0.0, f64::max)
+}
+
+/// A document point without tangents.
+fn plain_point(x: f64, y: f64, corner: bool) -> EditPoint {
+    EditPoint {
+        x,
+        y,
+        shape: 0.8,
+        corner,
+        tangent: None,
+        tangent_in: None,
+    }
+}
+
+#[test]
+fn tangents_are_held_undone_and_saved() {
+    use kurbo::Vec2;
+    let doc = PathDoc {
+        points: vec![
+            plain_point(100.0, 100.0, false),
+            plain_point(300.0, 80.0, false),
+            plain_point(320.0, 260.0, false),
+            plain_point(120.0, 280.0, false),
+        ],
+        closed: true,
+        scheme: Scheme::EkCubic,
+        solution: Vec::new(),
+    };
+    let (mut editor, change) = Editor::from_doc(doc);
+    assert!(change.errors.is_empty());
+    let free = editor.to_bezpath();
+    let seg = &editor.piece_spline(0).unwrap().segments()[1];
+    let d = seg.derivative(seg.t_max);
+    let turned = Vec2::from_angle(d.atan2() + 0.05);
+    let change = editor.set_tangent(1, Some(turned * 3.0), false);
+    assert!(change.errors.is_empty() && !change.rejected, "{change:?}");
+    let seg = &editor.piece_spline(0).unwrap().segments()[1];
+    let d = seg.derivative(seg.t_max);
+    assert!(turned.cross(d).atan2(turned.dot(d)).abs() <= 1e-9);
+    // Saved and reopened (serde), the same curve.
+    let text = serde_json::to_string(editor.doc()).unwrap();
+    assert!(text.contains("\"tangent\""));
+    let (reopened, _) = Editor::from_doc(serde_json::from_str(&text).unwrap());
+    let (a, b) = (reopened.to_bezpath(), editor.to_bezpath());
+    assert!(path_gap(&a, &b) <= 1e-9 * 300.0);
+    // Undo gives the free curve back; bad tangents are rejected.
+    assert!(editor.undo());
+    assert!(path_gap(&editor.to_bezpath(), &free) <= 1e-9 * 300.0);
+    for bad in [Vec2::ZERO, Vec2::new(f64::NAN, 1.0)] {
+        assert!(editor.set_tangent(2, Some(bad), false).rejected);
+    }
+}
+
+#[test]
+fn a_corner_with_the_line_s_direction_is_a_smooth_join() {
+    use kurbo::Vec2;
+    // A line from (0, 0) to (200, 0), then a curve through two points back up: the join at
+    // (200, 0) is a corner whose outgoing tangent runs along the line.
+    let mut points = vec![
+        plain_point(0.0, 0.0, true),
+        plain_point(200.0, 0.0, true),
+        plain_point(300.0, 60.0, false),
+        plain_point(260.0, 160.0, false),
+    ];
+    points[1].tangent = Some([1.0, 0.0]);
+    let doc = PathDoc {
+        points,
+        closed: false,
+        scheme: Scheme::Kappa,
+        solution: Vec::new(),
+    };
+    let (editor, change) = Editor::from_doc(doc);
+    assert!(change.errors.is_empty(), "{:?}", change.errors);
+    let curve = editor.piece_spline(1).unwrap();
+    let d = curve.segments()[0].derivative(0.0);
+    let line = Vec2::new(1.0, 0.0);
+    assert!(line.cross(d).atan2(line.dot(d)).abs() <= 1e-9, "{d:?}");
 }

@@ -44,6 +44,8 @@ fn hit_test_at_a_non_finite_point_is_none() {
                 y,
                 shape: 2.0 / 3.0,
                 corner: false,
+                tangent: None,
+                tangent_in: None,
             })
             .collect(),
         closed: false,

@@ -290,6 +290,37 @@ impl Drawing {
         self.record(k, |e| e.toggle_corner(i))
     }
 
+    /// Sets or clears the prescribed tangent of point `i` of contour `k` (see
+    /// [`Editor::set_tangent`]).
+    pub fn set_tangent(
+        &mut self,
+        k: usize,
+        i: usize,
+        tangent: Option<kurbo::Vec2>,
+        incoming: bool,
+    ) -> Change {
+        self.record(k, |e| e.set_tangent(i, tangent, incoming))
+    }
+
+    /// Sets the prescribed tangent of point `i` of contour `k` within a handle drag (see
+    /// [`Editor::drag_tangent`]).
+    pub fn drag_tangent(
+        &mut self,
+        k: usize,
+        i: usize,
+        tangent: kurbo::Vec2,
+        incoming: bool,
+    ) -> Change {
+        self.end_other_drags(k);
+        self.record(k, |e| e.drag_tangent(i, tangent, incoming))
+    }
+
+    /// Makes corner `i` of contour `k` a smooth line-to-curve join (see
+    /// [`Editor::set_smooth_join`]).
+    pub fn set_smooth_join(&mut self, k: usize, i: usize) -> Change {
+        self.record(k, |e| e.set_smooth_join(i))
+    }
+
     /// Opens or closes contour `k`.
     pub fn set_closed(&mut self, k: usize, closed: bool) -> Change {
         self.record(k, |e| e.set_closed(closed))

@@ -162,6 +162,8 @@ pub fn import_svg_paths(svg: &str, scheme: crate::Scheme) -> Result<DrawingDoc, 
                             y: p.y,
                             shape: scheme.neutral_shape(),
                             corner: false,
+                            tangent: None,
+                            tangent_in: None,
                         })
                         .collect(),
                     closed: closed && points.len() >= 3,

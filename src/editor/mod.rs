@@ -61,7 +61,7 @@ pub use file::{extract_svg_document, import_svg_paths, DrawingDoc, SVG_METADATA_
 #[cfg(feature = "render")]
 pub use svg::import_svg;
 
-use kurbo::{BezPath, Point};
+use kurbo::{BezPath, Point, Vec2};
 
 use crate::fit::{FitMethod, FitOptions};
 use crate::{Error, Scheme, Segment, Shape, SolveOptions, SolvedState, Solver, Spline};
@@ -79,6 +79,23 @@ pub struct EditPoint {
     /// A corner: the path has a tangent break here.
     #[cfg_attr(feature = "serde", serde(default))]
     pub corner: bool,
+    /// A prescribed tangent direction (any length but zero): the curve leaves the point
+    /// along it ([`Solver::solve_with_tangents`]). At a corner it is the direction of the
+    /// piece that starts there; [`EditPoint::tangent_in`] is the other side's. A smooth join
+    /// of a line and a curve is a corner whose tangent on the curve's side runs along the
+    /// line.
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub tangent: Option<[f64; 2]>,
+    /// At a corner, the prescribed direction in which the piece that ends there arrives
+    /// (ignored elsewhere).
+    #[cfg_attr(
+        feature = "serde",
+        serde(default, skip_serializing_if = "Option::is_none")
+    )]
+    pub tangent_in: Option<[f64; 2]>,
 }
 
 impl EditPoint {
@@ -228,6 +245,8 @@ enum Touched {
     Positions(Vec<usize>),
     /// The shapes (or the scheme) of these points (the same pieces).
     Shapes(Vec<usize>),
+    /// Positions and prescribed tangents of these points (the same pieces, solved cold).
+    Tangents(Vec<usize>),
     /// Anything else: the pieces are re-cut.
     Structure,
 }
@@ -324,6 +343,8 @@ enum Gesture {
     Point(usize),
     /// The point's shape (a slider).
     Shape(usize),
+    /// The point's prescribed tangent (`true`: the incoming one), by its handle.
+    Tangent(usize, bool),
 }
 
 impl Editor {
@@ -400,6 +421,8 @@ impl Editor {
                 y: p.y,
                 shape,
                 corner: false,
+                tangent: None,
+                tangent_in: None,
             });
             Touched::Structure
         })
@@ -449,6 +472,8 @@ impl Editor {
                     y: hit.point.y,
                     shape,
                     corner: false,
+                    tangent: None,
+                    tangent_in: None,
                 },
             );
             Touched::Structure
@@ -462,11 +487,7 @@ impl Editor {
         if i >= self.doc.points.len() {
             return Change::default();
         }
-        self.edit(|doc| {
-            doc.points[i].x = p.x;
-            doc.points[i].y = p.y;
-            Touched::Positions(vec![i])
-        })
+        self.edit(|doc| move_keeping_joins(doc, i, p))
     }
 
     /// Moves point `i` to `p` as one update of a drag gesture: like [`Editor::move_point`],
@@ -479,11 +500,7 @@ impl Editor {
         if i >= self.doc.points.len() {
             return Change::default();
         }
-        self.gesture(Gesture::Point(i), |doc| {
-            doc.points[i].x = p.x;
-            doc.points[i].y = p.y;
-            Touched::Positions(vec![i])
-        })
+        self.gesture(Gesture::Point(i), |doc| move_keeping_joins(doc, i, p))
     }
 
     /// Sets the shape of point `i` as one update of a slider drag: like
@@ -562,6 +579,56 @@ impl Editor {
             doc.points[i].corner = !doc.points[i].corner;
             Touched::Structure
         })
+    }
+
+    /// Sets or clears point `i`'s prescribed tangent ([`EditPoint::tangent`]; `incoming`:
+    /// [`EditPoint::tangent_in`], the side of a corner where a piece ends). A zero or
+    /// non-finite vector is rejected ([`Change::rejected`]).
+    pub fn set_tangent(&mut self, i: usize, tangent: Option<Vec2>, incoming: bool) -> Change {
+        if i >= self.doc.points.len() {
+            return Change::default();
+        }
+        self.edit(|doc| {
+            let v = tangent.map(|v| [v.x, v.y]);
+            if incoming {
+                doc.points[i].tangent_in = v;
+            } else {
+                doc.points[i].tangent = v;
+            }
+            Touched::Structure
+        })
+    }
+
+    /// Sets point `i`'s prescribed tangent as one update of a handle drag: like
+    /// [`Editor::set_tangent`], with the undo steps of [`Editor::drag_point`] (consecutive
+    /// updates of the same handle are one step, until [`Editor::end_drag`]).
+    pub fn drag_tangent(&mut self, i: usize, tangent: Vec2, incoming: bool) -> Change {
+        if i >= self.doc.points.len() {
+            return Change::default();
+        }
+        self.gesture(Gesture::Tangent(i, incoming), |doc| {
+            let v = Some([tangent.x, tangent.y]);
+            if incoming {
+                doc.points[i].tangent_in = v;
+            } else {
+                doc.points[i].tangent = v;
+            }
+            Touched::Tangents(vec![i])
+        })
+    }
+
+    /// Makes corner `i` a smooth line-to-curve join: where a straight segment is on one side
+    /// of it and a curve on the other ([`join_line`]), the curve side's tangent is set along
+    /// the line. Moving either point of the line keeps it along the line
+    /// ([`Editor::move_point`]). Elsewhere nothing changes ([`Change::rejected`]).
+    pub fn set_smooth_join(&mut self, i: usize) -> Change {
+        let Some((dir, incoming)) = join_line(&self.doc, i) else {
+            return Change {
+                rejected: true,
+                ..Change::default()
+            };
+        };
+        self.set_tangent(i, Some(dir), incoming)
     }
 
     /// Opens or closes the path.
@@ -678,6 +745,7 @@ impl Editor {
         let (points, how) = match touched {
             Touched::Positions(p) if same => (p, Resolve::Positions),
             Touched::Shapes(p) if same => (p, Resolve::Shapes),
+            Touched::Tangents(p) if same => (p, Resolve::Cold),
             _ => {
                 let saved = self.pieces.clone();
                 // The saved solutions are those of the old pieces (an unchanged piece starts
@@ -790,20 +858,26 @@ impl Editor {
             max_iterations,
             ..full
         });
-        // Warm only from a solver whose last solve succeeded (its state is that curve).
+        let tangents = piece_tangents(doc, &piece.spec);
+        // Warm only from a solver whose last solve succeeded (its state is that curve; a
+        // warm re-solve keeps the tangents of that solve, and a change of tangents is a
+        // structural edit, which solves cold).
         let solved = piece.spline.is_some() && piece.error.is_none();
+        let closed = piece.spec.closed;
         let result = match how {
             Resolve::Positions if solved => piece.solver.resolve(&pts),
             Resolve::Shapes if solved => piece.solver.resolve_shapes(doc.scheme, &shape),
-            _ => match piece.start.take() {
-                Some(start) => {
-                    piece
-                        .solver
-                        .solve_from(&pts, piece.spec.closed, doc.scheme, &shape, &start)
-                }
-                None => piece
+            _ => match (piece.start.take(), tangents) {
+                (Some(start), None) => piece
                     .solver
-                    .solve(&pts, piece.spec.closed, doc.scheme, &shape),
+                    .solve_from(&pts, closed, doc.scheme, &shape, &start),
+                (None, None) => piece.solver.solve(&pts, closed, doc.scheme, &shape),
+                (Some(start), Some(t)) => piece
+                    .solver
+                    .solve_with_tangents_from(&pts, closed, doc.scheme, &shape, &t, &start),
+                (None, Some(t)) => piece
+                    .solver
+                    .solve_with_tangents(&pts, closed, doc.scheme, &shape, &t),
             },
         };
         change.resolved.push(k);
@@ -989,11 +1063,134 @@ impl Editor {
     }
 }
 
-/// The first non-finite coordinate or shape of a document, as an error.
+/// Whether the segment from point `c` to its neighbour `l` is straight (a piece of two
+/// points: two corners, or a corner and an open path's end).
+fn is_line(doc: &PathDoc, c: usize, l: usize) -> bool {
+    let n = doc.points.len();
+    let end = !doc.closed && (l == 0 || l + 1 == n);
+    doc.points[c].corner && (doc.points[l].corner || end)
+}
+
+/// The neighbours of point `i` (before, after), cyclically in a closed path.
+fn neighbours(doc: &PathDoc, i: usize) -> (Option<usize>, Option<usize>) {
+    let n = doc.points.len();
+    let closed = doc.closed && n >= 3;
+    let prev = if i > 0 {
+        Some(i - 1)
+    } else {
+        closed.then_some(n - 1)
+    };
+    let next = if i + 1 < n {
+        Some(i + 1)
+    } else {
+        closed.then_some(0)
+    };
+    (prev, next)
+}
+
+/// At corner `c` with a straight segment on one side and a curve on the other: the line's
+/// direction (unit, in the direction of travel) and which tangent of `c` the curve side
+/// takes (`true`: [`EditPoint::tangent_in`], the curve arrives and the line leaves;
+/// `false`: [`EditPoint::tangent`], the line arrives and the curve leaves). `None`
+/// elsewhere.
+pub fn join_line(doc: &PathDoc, c: usize) -> Option<(Vec2, bool)> {
+    if c >= doc.points.len() || !doc.points[c].corner {
+        return None;
+    }
+    let (Some(prev), Some(next)) = neighbours(doc, c) else {
+        return None;
+    };
+    let at = doc.points[c].point();
+    let (dir, incoming) = match (is_line(doc, c, prev), is_line(doc, c, next)) {
+        (true, false) => (at - doc.points[prev].point(), false),
+        (false, true) => (doc.points[next].point() - at, true),
+        _ => return None,
+    };
+    let len = dir.hypot();
+    (len > 0.0 && len.is_finite()).then(|| (dir / len, incoming))
+}
+
+/// Whether corner `c` is a smooth join: its curve side's tangent runs along the line
+/// (within 1e-6 rad, see [`join_line`]).
+fn is_smooth_join(doc: &PathDoc, c: usize) -> Option<bool> {
+    let (dir, incoming) = join_line(doc, c)?;
+    let p = &doc.points[c];
+    let [x, y] = if incoming { p.tangent_in } else { p.tangent }?;
+    let t = Vec2::new(x, y);
+    let len = t.hypot();
+    let along = len > 0.0 && t.dot(dir) > 0.0 && (t.cross(dir) / len).abs() < 1e-6;
+    along.then_some(incoming)
+}
+
+/// Moves point `i` to `p`, keeping the smooth joins at `i` and its neighbours along their
+/// lines (their tangents follow the line's new direction).
+fn move_keeping_joins(doc: &mut PathDoc, i: usize, p: Point) -> Touched {
+    let (prev, next) = neighbours(doc, i);
+    let joins: Vec<(usize, bool)> = [prev, Some(i), next]
+        .into_iter()
+        .flatten()
+        .filter_map(|c| is_smooth_join(doc, c).map(|incoming| (c, incoming)))
+        .collect();
+    doc.points[i].x = p.x;
+    doc.points[i].y = p.y;
+    if joins.is_empty() {
+        return Touched::Positions(vec![i]);
+    }
+    let mut touched = vec![i];
+    for (c, incoming) in joins {
+        if let Some((dir, _)) = join_line(doc, c) {
+            let v = Some([dir.x, dir.y]);
+            if incoming {
+                doc.points[c].tangent_in = v;
+            } else {
+                doc.points[c].tangent = v;
+            }
+            touched.push(c);
+        }
+    }
+    Touched::Tangents(touched)
+}
+
+/// The prescribed tangents of a piece's points (`None` if it has none): at a piece's first
+/// point its outgoing [`EditPoint::tangent`]; at an open piece's last point that is a
+/// corner, its [`EditPoint::tangent_in`]; elsewhere [`EditPoint::tangent`].
+fn piece_tangents(doc: &PathDoc, spec: &PieceSpec) -> Option<Vec<Option<Vec2>>> {
+    let m = spec.indices.len();
+    let tangents: Vec<Option<Vec2>> = spec
+        .indices
+        .iter()
+        .enumerate()
+        .map(|(k, &i)| {
+            let p = &doc.points[i];
+            let t = if !spec.closed && k + 1 == m && k > 0 && p.corner {
+                p.tangent_in
+            } else {
+                p.tangent
+            };
+            t.map(|[x, y]| Vec2::new(x, y))
+        })
+        .collect();
+    tangents.iter().any(Option::is_some).then_some(tangents)
+}
+
+/// What is wrong with a prescribed tangent, if anything.
+fn tangent_problem(v: [f64; 2]) -> Option<&'static str> {
+    let len = v[0].hypot(v[1]);
+    (!(len > 0.0 && len.is_finite())).then_some("a tangent must be a nonzero, finite vector")
+}
+
+/// The first non-finite coordinate or shape of a document, or unusable tangent, as an
+/// error.
 fn non_finite(doc: &PathDoc) -> Option<Error> {
     doc.points.iter().enumerate().find_map(|(index, p)| {
         if !(p.x.is_finite() && p.y.is_finite()) {
             Some(Error::NonFinitePoint { index })
+        } else if let Some(reason) = [p.tangent, p.tangent_in]
+            .into_iter()
+            .flatten()
+            .find_map(tangent_problem)
+        {
+            Some(Error::InvalidTangent { index, reason })
         } else if !p.shape.is_finite() {
             let (min, max) = doc.scheme.shape_range();
             Some(Error::ShapeOutOfRange {
@@ -1066,12 +1263,56 @@ mod tests {
                     y: (i * i) as f64,
                     shape: 0.8,
                     corner: corners.contains(&i),
+                    tangent: None,
+                    tangent_in: None,
                 })
                 .collect(),
             closed,
             scheme: Scheme::EkCubic,
             solution: Vec::new(),
         }
+    }
+
+    #[test]
+    fn smooth_joins_follow_their_line() {
+        // An n shoulder: a stem (0 to 1) and an arch leaving its top along it.
+        let pts = [(0.0, 0.0), (0.0, 400.0), (120.0, 500.0), (250.0, 420.0)];
+        let mut e = Editor::new(Scheme::Kappa);
+        for (x, y) in pts {
+            e.add_point(Point::new(x, y));
+        }
+        e.toggle_corner(1);
+        assert!(e.set_smooth_join(2).rejected);
+        assert!(!e.set_smooth_join(1).rejected);
+        assert_eq!(e.doc().points[1].tangent, Some([0.0, 1.0]));
+        let leaves = |e: &Editor| {
+            let d = e.piece_spline(1).unwrap().segments()[0].derivative(0.0);
+            let [x, y] = e.doc().points[1].tangent.unwrap();
+            (d.cross(Vec2::new(x, y)) / d.hypot()).abs()
+        };
+        assert!(e.errors().is_empty() && leaves(&e) < 1e-6);
+        // Moving the line's other end turns the tangent with it, in the same undo step.
+        for k in 1..=5 {
+            e.drag_point(0, Point::new(4.0 * k as f64, 0.0));
+        }
+        e.end_drag();
+        let [x, y] = e.doc().points[1].tangent.unwrap();
+        assert!((Vec2::new(x, y).cross(Vec2::new(-20.0, 400.0))).abs() < 1e-9);
+        assert!(e.errors().is_empty() && leaves(&e) < 1e-6);
+        assert!(e.undo());
+        assert_eq!(e.doc().points[1].tangent, Some([0.0, 1.0]));
+        // A handle drag is one undo step.
+        for k in 1..=4 {
+            e.drag_tangent(2, Vec2::new(1.0, -0.1 * k as f64), false);
+        }
+        e.end_drag();
+        assert_eq!(e.doc().points[2].tangent, Some([1.0, -0.4]));
+        assert!(e.undo());
+        assert_eq!(e.doc().points[2].tangent, None);
+        // A tangent set by hand off the line is left alone.
+        e.set_tangent(1, Some(Vec2::new(0.1, 1.0)), false);
+        e.move_point(0, Point::new(10.0, 0.0));
+        assert_eq!(e.doc().points[1].tangent, Some([0.1, 1.0]));
     }
 
     #[test]

@@ -76,6 +76,8 @@ fn doc_of(pts: &[Point], closed: bool, scheme: Scheme) -> PathDoc {
                 y: p.y,
                 shape: scheme.neutral_shape(),
                 corner: false,
+                tangent: None,
+                tangent_in: None,
             })
             .collect(),
         closed,

@@ -398,6 +398,13 @@ impl<const D: usize> JointTerms<D> {
     }
 }
 
+/// The limits of [`Workspace::follow`]: the iteration budget and the smallest step.
+#[derive(Clone, Copy, Debug)]
+struct Homotopy {
+    max_iterations: usize,
+    min_step: f64,
+}
+
 /// What a solve reports.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub(crate) struct Outcome {
@@ -1365,12 +1372,35 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             out.residual = f64::INFINITY;
             return out;
         }
+        // (s = 1 exactly reproduces the shapes.)
+        let steps = Homotopy {
+            max_iterations: set.max_iterations,
+            min_step: MIN_STEP,
+        };
+        self.follow(prob, scratch, blend, budget, steps, total)
+    }
+
+    /// Follows a homotopy from `s = 0`, solved in the current state, to `s = 1`: `blend`
+    /// sets `moving` to the problem at `s`; steps start at 0.25, grow by 1.5 after a
+    /// converged step and halve after a failed one (back to the last solution), until `s`
+    /// reaches 1, the steps shrink below `steps.min_step` or the iterations (counted from
+    /// `total`, each step capped at [`STEP_BUDGET`] through `budget`) reach
+    /// `steps.max_iterations`. A final polish solves `prob` itself.
+    fn follow(
+        &mut self,
+        prob: &Problem<D>,
+        moving: &mut Problem<D>,
+        mut blend: impl FnMut(&mut Problem<D>, f64),
+        budget: impl Fn(usize, usize) -> Settings,
+        steps: Homotopy,
+        mut total: usize,
+    ) -> Outcome {
         let (mut s, mut ds) = (0.0f64, 0.25f64);
         let mut saved = self.state.clone();
-        while s < 1.0 && total < set.max_iterations && ds > MIN_STEP {
+        while s < 1.0 && total < steps.max_iterations && ds > steps.min_step {
             let s_try = (s + ds).min(1.0);
-            blend(scratch, s_try);
-            let step = self.solve(scratch, &budget(total, STEP_BUDGET), 0, false);
+            blend(moving, s_try);
+            let step = self.solve(moving, &budget(total, STEP_BUDGET), 0, false);
             total += step.iterations;
             if step.converged {
                 s = s_try;
@@ -1381,11 +1411,11 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 ds *= 0.5;
             }
         }
-        // Final polish on the true problem (s = 1 exactly reproduces its shapes).
         let fin = self.solve(prob, &budget(total, STEP_BUDGET), 0, false);
-        out = fin;
-        out.iterations = total + fin.iterations;
-        out
+        Outcome {
+            iterations: total + fin.iterations,
+            ..fin
+        }
     }
 
     /// Largest scaled residual component.

@@ -49,8 +49,7 @@
 //! the solution found is on the free curve's branch.
 
 use super::{
-    dot, Basis, Local, Outcome, Problem, Settings, State, Var, Workspace, CLASSIC_START,
-    STEP_BUDGET,
+    dot, Basis, Homotopy, Local, Outcome, Problem, Settings, State, Var, Workspace, CLASSIC_START,
 };
 use crate::basis::SegmentBasis;
 
@@ -303,29 +302,12 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 })
             }));
         };
-        let (mut s, mut ds) = (0.0f64, 0.25f64);
-        let mut saved = self.state.clone();
-        while s < 1.0 && total < set.max_iterations && ds > TANGENT_MIN_STEP {
-            let s_try = (s + ds).min(1.0);
-            blend(&mut moving, s_try);
-            let step = self.solve(&moving, &budget(total, STEP_BUDGET), 0, false);
-            total += step.iterations;
-            if step.converged {
-                s = s_try;
-                saved.clone_from(&self.state);
-                ds *= 1.5;
-            } else {
-                self.state.clone_from(&saved);
-                ds *= 0.5;
-            }
-        }
-        // Final polish on the true problem (s = 1 reproduces its directions but for
-        // rounding).
-        let fin = self.solve(prob, &budget(total, STEP_BUDGET), 0, false);
-        Outcome {
-            iterations: total + fin.iterations,
-            ..fin
-        }
+        // (s = 1 reproduces the directions but for rounding.)
+        let steps = Homotopy {
+            max_iterations: set.max_iterations,
+            min_step: TANGENT_MIN_STEP,
+        };
+        self.follow(prob, &mut moving, blend, budget, steps, total)
     }
 
     /// The unit tangent of block `j`'s segment at the parameter a tangent `at` there

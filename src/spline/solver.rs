@@ -94,7 +94,9 @@ pub struct SolverN<P, const D: usize, const B: usize> {
     /// Prescribed tangent directions by input point (empty: none), as given.
     tangents: Vec<Option<[f64; D]>>,
     /// The last free curve (no tangents) solved cold, by its input: a solve with tangents
-    /// of the same input turns its directions from there without solving it again.
+    /// of the same input turns its directions from there without solving it again. Kept
+    /// only once this solver has solved with tangents (a copy per cold solve otherwise
+    /// costs the bear 3 % more instructions).
     free: Option<FreeCurve<D>>,
     _marker: core::marker::PhantomData<P>,
 }
@@ -195,6 +197,33 @@ impl Solver {
         shape: &Shape,
         tangents: &[Option<kurbo::Vec2>],
     ) -> Result<Spline<Point>, Error> {
+        self.set_tangent_list(points, tangents)?;
+        self.solve_again(points, closed, scheme, shape)
+    }
+
+    /// [`solve_with_tangents`](Self::solve_with_tangents) starting from a saved solution
+    /// ([`SolverN::state`] of an earlier solve of the same input and tangents): that curve
+    /// again, as [`SolverN::solve_from`] does for a free curve. A state that does not fit is
+    /// ignored.
+    pub fn solve_with_tangents_from(
+        &mut self,
+        points: &[Point],
+        closed: bool,
+        scheme: Scheme,
+        shape: &Shape,
+        tangents: &[Option<kurbo::Vec2>],
+        start: &SolvedState,
+    ) -> Result<Spline<Point>, Error> {
+        self.set_tangent_list(points, tangents)?;
+        self.solve_from_kept(points, closed, scheme, shape, start)
+    }
+
+    /// Keeps `tangents` for the next solves, or reports a list of the wrong length.
+    fn set_tangent_list(
+        &mut self,
+        points: &[Point],
+        tangents: &[Option<kurbo::Vec2>],
+    ) -> Result<(), Error> {
         self.tangents.clear();
         self.tangents
             .extend(tangents.iter().map(|t| t.map(|v| [v.x, v.y])));
@@ -207,7 +236,7 @@ impl Solver {
                 reason: "expected one entry per point",
             });
         }
-        self.solve_again(points, closed, scheme, shape)
+        Ok(())
     }
 }
 
@@ -310,6 +339,18 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
     ) -> Result<Spline<P>, Error> {
         // (A free curve, as `solve` solves it: no tangents.)
         self.tangents.clear();
+        self.solve_from_kept(points, closed, scheme, shape, start)
+    }
+
+    /// [`solve_from`](Self::solve_from) with the tangents of the last solve kept.
+    fn solve_from_kept(
+        &mut self,
+        points: &[P],
+        closed: bool,
+        scheme: Scheme,
+        shape: &Shape,
+        start: &SolvedState,
+    ) -> Result<Spline<P>, Error> {
         self.warm = false;
         self.setup(points, closed, scheme, Some(shape))?;
         // (Open input of two points has no unknowns: nothing to start from.)
@@ -692,6 +733,10 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
     /// The cold solve: the cascade of [`Workspace::solve_cold`], or with tangents
     /// [`Workspace::solve_cold_tangents`].
     fn cold(&mut self, settings: &Settings) -> Outcome {
+        if self.prob.tangents.is_empty() && self.free.is_none() {
+            // A solver that has not held tangents keeps no free curve.
+            return self.ws.solve_cold(&self.prob, settings, &mut self.scratch);
+        }
         let input = (&self.points, self.prob.closed, &self.prob.basis);
         let cached = self.free.take().filter(|f| f.input() == input);
         if self.prob.tangents.is_empty() {

@@ -323,6 +323,8 @@ pub fn editor(data: &[u8]) {
                         y: p.y,
                         shape: g.shape_value(scheme),
                         corner: g.below(6) == 0,
+                        tangent: None,
+                        tangent_in: None,
                     })
                     .collect(),
                 closed: g.flag(),

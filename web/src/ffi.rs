@@ -134,6 +134,52 @@ pub extern "C" fn kp_toggle_corner(i: u32) -> u32 {
     with(|s| s.toggle_corner(index(i)))
 }
 
+/// Sets the prescribed tangent of point `i` of the active contour to `(x, y)` (`incoming`
+/// 1: the side of a corner where a piece arrives).
+#[no_mangle]
+pub extern "C" fn kp_set_tangent(i: u32, x: f64, y: f64, incoming: u32) -> u32 {
+    with(|s| s.set_tangent(index(i), x, y, incoming != 0))
+}
+
+/// Sets the prescribed tangent of point `i` of the active contour within a handle drag (one
+/// undo step until [`kp_end_drag`]).
+#[no_mangle]
+pub extern "C" fn kp_drag_tangent(i: u32, x: f64, y: f64, incoming: u32) -> u32 {
+    with(|s| s.drag_tangent(index(i), x, y, incoming != 0))
+}
+
+/// Clears the prescribed tangent of point `i` of the active contour.
+#[no_mangle]
+pub extern "C" fn kp_clear_tangent(i: u32, incoming: u32) -> u32 {
+    with(|s| s.clear_tangent(index(i), incoming != 0))
+}
+
+/// Makes corner `i` of the active contour a smooth line-to-curve join; `u32::MAX` where it
+/// has no line on one side and curve on the other.
+#[no_mangle]
+pub extern "C" fn kp_smooth_join(i: u32) -> u32 {
+    with(|s| s.smooth_join(index(i)))
+}
+
+/// Writes the tangents of contour `k` to the numbers ([`Session::fill_tangents`]).
+#[no_mangle]
+pub extern "C" fn kp_tangents(k: u32) -> u32 {
+    with(|s| len(s.fill_tangents(index(k))))
+}
+
+/// Encodes the outline of contour `k` into the path buffer
+/// ([`Session::fill_contour_path`]).
+#[no_mangle]
+pub extern "C" fn kp_contour_path(k: u32) -> u32 {
+    with(|s| len(s.fill_contour_path(index(k))))
+}
+
+/// The neutral shape parameter of scheme `scheme` (NaN for an unknown code).
+#[no_mangle]
+pub extern "C" fn kp_neutral_shape(scheme: u32) -> f64 {
+    scheme_from_code(scheme).map_or(f64::NAN, |s| s.neutral_shape())
+}
+
 /// Closes (`1`) or opens (`0`) the active contour.
 #[no_mangle]
 pub extern "C" fn kp_set_closed(closed: u32) -> u32 {
@@ -398,6 +444,17 @@ mod tests {
         assert_eq!(kp_toggle_corner(0), 0);
         assert_eq!(kp_insert_point(150.0, 80.0), 1);
         assert_eq!(kp_delete_point(1), 0);
+        // A tangent far from the free curve may not converge: the count says so.
+        assert!(kp_set_tangent(2, 1.0, 0.1, 0) <= 1);
+        assert_eq!(kp_tangents(0), 16);
+        with(|s| assert_eq!(s.nums()[2 * 4], 1.0));
+        assert!(kp_drag_tangent(2, 1.0, 0.2, 0) <= 1);
+        assert!(kp_drag_tangent(2, 1.0, 0.3, 0) <= 1);
+        kp_end_drag();
+        assert_eq!(kp_clear_tangent(2, 0), 0);
+        assert_eq!(kp_smooth_join(2), u32::MAX);
+        assert!(kp_contour_path(0) > 0);
+        assert!(kp_neutral_shape(9).is_nan());
         assert_eq!(kp_last_error(), 0);
         assert_eq!(kp_preview(0.0, 0.0), 0);
         // A second contour; then open a file.
@@ -424,8 +481,9 @@ mod tests {
             steps += 1;
         }
         // 4 points (the first starts the contour), close, shape, a slider gesture, a drag
-        // gesture, scheme, corner, insert, delete, a contour, the open, a delete, the clear.
-        assert_eq!(steps, 16);
+        // gesture, scheme, corner, insert, delete, a tangent, a handle drag, the tangent's
+        // clearing, a contour, the open, a delete, the clear.
+        assert_eq!(steps, 19);
         assert_eq!(kp_contour_count(), 0);
         assert_eq!(kp_can_undo(), 0);
         assert_eq!(kp_redo(), 1);

@@ -285,6 +285,41 @@ impl Session {
         self.record(c)
     }
 
+    /// Sets the prescribed tangent of point `i` of the active contour to `(x, y)`
+    /// (`incoming`: the side of a corner where a piece arrives). A zero or non-finite
+    /// vector is rejected (the drawing is unchanged); [`Session::clear_tangent`] clears.
+    pub fn set_tangent(&mut self, i: usize, x: f64, y: f64, incoming: bool) -> u32 {
+        let v = kurbo::Vec2::new(x, y);
+        let c = self.drawing.set_tangent(self.k(), i, Some(v), incoming);
+        self.record(c)
+    }
+
+    /// Sets the prescribed tangent of point `i` of the active contour within a handle drag
+    /// (one undo step until [`Session::end_drag`]).
+    pub fn drag_tangent(&mut self, i: usize, x: f64, y: f64, incoming: bool) -> u32 {
+        let v = kurbo::Vec2::new(x, y);
+        let c = self.drawing.drag_tangent(self.k(), i, v, incoming);
+        self.record(c)
+    }
+
+    /// Clears the prescribed tangent of point `i` of the active contour (`incoming`: the
+    /// side of a corner where a piece arrives).
+    pub fn clear_tangent(&mut self, i: usize, incoming: bool) -> u32 {
+        let c = self.drawing.set_tangent(self.k(), i, None, incoming);
+        self.record(c)
+    }
+
+    /// Makes corner `i` of the active contour a smooth line-to-curve join
+    /// ([`kappa::editor::Editor::set_smooth_join`]); the number of pieces that failed, or
+    /// `u32::MAX` where there is no line on one side and curve on the other.
+    pub fn smooth_join(&mut self, i: usize) -> u32 {
+        let c = self.drawing.set_smooth_join(self.k(), i);
+        if c.rejected {
+            return u32::MAX;
+        }
+        self.record(c)
+    }
+
     /// Opens or closes the active contour.
     pub fn set_closed(&mut self, closed: bool) -> u32 {
         let c = self.drawing.set_closed(self.k(), closed);
@@ -369,6 +404,31 @@ impl Session {
             }
         }
         self.nums.len()
+    }
+
+    /// Writes the prescribed tangents of every point of contour `k` to the numbers:
+    /// `tx, ty, tin_x, tin_y` each (outgoing, then incoming; NaN where there is none);
+    /// their count.
+    pub fn fill_tangents(&mut self, k: usize) -> usize {
+        self.nums.clear();
+        if let Some(e) = self.drawing.contour(k) {
+            for p in &e.doc().points {
+                let [a, b] = p.tangent.unwrap_or([f64::NAN; 2]);
+                let [c, d] = p.tangent_in.unwrap_or([f64::NAN; 2]);
+                self.nums.extend([a, b, c, d]);
+            }
+        }
+        self.nums.len()
+    }
+
+    /// Encodes the outline of contour `k` alone ([`Editor::outline`]: one subpath, closed
+    /// when the contour is) into the path buffer; the count of numbers.
+    pub fn fill_contour_path(&mut self, k: usize) -> usize {
+        self.path.clear();
+        if let Some(e) = self.drawing.contour(k) {
+            encode_path(&e.outline(), &mut self.path);
+        }
+        self.path.len()
     }
 
     /// Writes piece `j` of contour `k` to the numbers: `closed, failed, m, n`, then its `m`

@@ -4,6 +4,7 @@
 // (web/test/) drives.
 
 import { Engine, tracePath, pathElements } from "./kappa.js";
+import { isGlif, parseGlif, writeGlif } from "./glif.js";
 
 // Comb teeth per segment: 16 on short drawings, fewer on long ones (4 from 300 points on), so
 // that the comb costs a drag update no more than about a millisecond.
@@ -16,6 +17,8 @@ const TOUCH_RADIUS = 18;      // the same for a finger
 const INSERT_RADIUS = 10;     // screen px around the curve where Shift+click inserts
 const DOUBLE_CLICK_MS = 400;  // two presses on one point this close make a double click
 const TAP_SLOP = 10;          // screen px a finger may move and still tap
+const HANDLE_PX = 40;         // screen px from a point to the knob of its tangent handle
+const HANDLE_COLOR = "#1a6fd6";
 const MIN_SCALE = 0.02, MAX_SCALE = 64;
 const WARNING_COLOR = "#e07000"; // a piece whose solve did not converge (its best curve)
 const STORAGE_KEY = "kappa-path-tool/drawing";
@@ -36,6 +39,8 @@ const view = { scale: 1, tx: 0, ty: 0 };
 const ui = {
   sel: null,          // the selected point {contour, index}
   drag: null,         // a point drag {id, contour, index}
+  tdrag: null,        // a tangent handle drag {id, contour, index, incoming}
+  glyph: null,        // the glyph file last opened (an XML document), kept when saving .glif
   pan: null,          // a pan drag {id, x, y, tx, ty}
   tap: null,          // a finger down away from the points {id, s, p}: a tap until it moves
   pinch: null,        // two fingers {d0, m0, scale0, tx0, ty0}
@@ -78,8 +83,8 @@ function draw() {
   ctx.setTransform(dpr * s, 0, 0, dpr * s, dpr * view.tx, dpr * view.ty);
   if (ui.comb) {
     const comb = engine.combData(combLength(), COMB_PERCENTILE, COMB_CLIP,
-      combSamples(totalPoints()), ui.drag ? ui.combScale : 0);
-    if (!ui.drag) ui.combScale = engine.combScale();
+      combSamples(totalPoints()), ui.drag || ui.tdrag ? ui.combScale : 0);
+    if (!ui.drag && !ui.tdrag) ui.combScale = engine.combScale();
     ctx.beginPath();
     tracePath(ctx, comb);
     ctx.strokeStyle = "rgba(40, 110, 220, 0.55)";
@@ -156,6 +161,7 @@ function draw() {
     ctx.strokeStyle = "#d11";
     ctx.stroke();
   }
+  drawHandles();
   if (closeHint) {
     const q = toScreen(engine.points(active)[0]);
     ctx.beginPath();
@@ -163,6 +169,144 @@ function draw() {
     ctx.strokeStyle = "#d11";
     ctx.stroke();
   }
+}
+
+// ---- Tangent handles ----
+
+const unit = (v) => {
+  const l = Math.hypot(v[0], v[1]);
+  return l > 0 && Number.isFinite(l) ? [v[0] / l, v[1] / l] : null;
+};
+
+// The direction of the curve at point i of contour k where no tangent is prescribed: from
+// the solved curve at a smooth point, along the neighbouring segment at a corner (the side
+// `incoming`), else between the neighbours.
+function freeDirection(k, i, incoming) {
+  const pts = engine.points(k);
+  const n = pts.length, p = pts[i];
+  const closed = engine.closed(k);
+  const prev = i > 0 ? pts[i - 1] : closed ? pts[n - 1] : null;
+  const next = i + 1 < n ? pts[i + 1] : closed ? pts[0] : null;
+  if (p.corner) {
+    if (incoming) return prev && unit([p.x - prev.x, p.y - prev.y]);
+    return next && unit([next.x - p.x, next.y - p.y]);
+  }
+  const h = engine.hit(p.x, p.y);
+  if (h && h.contour === k && h.distance < 1e-6 * (1 + Math.hypot(p.x, p.y))) {
+    const dt = 1e-4;
+    const a = engine.evalCurve(k, h.piece, h.segment, Math.max(0, h.t - dt));
+    const b = engine.evalCurve(k, h.piece, h.segment, Math.min(1, h.t + dt));
+    const d = a && b && unit([b.x - a.x, b.y - a.y]);
+    if (d) return d;
+  }
+  const a = prev ?? p, b = next ?? p;
+  return unit([b.x - a.x, b.y - a.y]);
+}
+
+// The handles of the selected point, in screen px: [{incoming, set, dir, at, knob}]. A smooth
+// point has one (the direction the curve passes it, drawn through the point); a corner one
+// per side that has a piece (its outgoing and its incoming tangent).
+function handles() {
+  const sel = selection();
+  if (!sel) return [];
+  const { contour: k, index: i } = sel;
+  const pts = engine.points(k);
+  const p = pts[i];
+  const t = engine.tangents(k)[i];
+  const closed = engine.closed(k);
+  const sides = p.corner
+    ? [[false, i + 1 < pts.length || closed], [true, i > 0 || closed]]
+    : [[false, pts.length > 1]];
+  const at = toScreen(p);
+  const out = [];
+  for (const [incoming, exists] of sides) {
+    if (!exists) continue;
+    const v = incoming ? t.in : t.out;
+    const dir = (v && unit(v)) ?? freeDirection(k, i, incoming);
+    if (!dir) continue;
+    const sign = incoming ? -1 : 1;
+    out.push({
+      incoming, set: !!v, dir, at,
+      knob: { x: at.x + sign * dir[0] * HANDLE_PX, y: at.y + sign * dir[1] * HANDLE_PX },
+    });
+  }
+  return out;
+}
+
+function drawHandles() {
+  for (const h of handles()) {
+    ctx.beginPath();
+    // A smooth point's handle runs through the point; a corner's from the point to one side.
+    const smooth = !engine.points(ui.sel.contour)[ui.sel.index].corner;
+    const from = smooth ? { x: 2 * h.at.x - h.knob.x, y: 2 * h.at.y - h.knob.y } : h.at;
+    ctx.moveTo(from.x, from.y);
+    ctx.lineTo(h.knob.x, h.knob.y);
+    ctx.strokeStyle = HANDLE_COLOR;
+    ctx.lineWidth = 1.25;
+    ctx.setLineDash(h.set ? [] : [3, 3]);
+    ctx.stroke();
+    ctx.setLineDash([]);
+    ctx.beginPath();
+    ctx.arc(h.knob.x, h.knob.y, 4.5, 0, 2 * Math.PI);
+    ctx.fillStyle = h.set ? HANDLE_COLOR : "#fff";
+    ctx.fill();
+    ctx.strokeStyle = HANDLE_COLOR;
+    ctx.stroke();
+  }
+}
+
+// The handle whose knob is within `radius` screen px of `s`, or null.
+function pickHandle(s, radius) {
+  let best = null, bestD = radius;
+  for (const h of handles()) {
+    const d = Math.hypot(h.knob.x - s.x, h.knob.y - s.y);
+    if (d <= bestD) { best = h; bestD = d; }
+  }
+  return best;
+}
+
+// A handle drag update: the tangent points from the point to the pointer (from the pointer
+// to the point on a corner's incoming side).
+function dragHandle(s) {
+  const { contour: k, index: i, incoming } = ui.tdrag;
+  const p = engine.points(k)[i];
+  const q = toDoc(s);
+  const v = incoming ? [p.x - q.x, p.y - q.y] : [q.x - p.x, q.y - p.y];
+  if (Math.hypot(v[0], v[1]) * view.scale < 1) return;
+  const t0 = performance.now();
+  engine.setActive(k);
+  const errors = engine.dragTangent(i, v[0], v[1], incoming);
+  draw();
+  ui.lastUpdateMs = performance.now() - t0;
+  ui.message = errors > 0 ? engine.lastError() : "";
+  status();
+}
+
+// Frees the selected point's tangents (the curve's own direction again).
+function clearTangent() {
+  const sel = selection();
+  if (!sel) return;
+  engine.setActive(sel.contour);
+  const t = engine.tangents(sel.contour)[sel.index];
+  if (t.out) engine.clearTangent(sel.index, false);
+  if (t.in) engine.clearTangent(sel.index, true);
+  refresh();
+}
+
+// The selected corner becomes a smooth line-to-curve join (the curve side's tangent along
+// the line, kept along it when the line's ends move).
+function smoothJoin() {
+  const sel = selection();
+  if (!sel) return;
+  engine.setActive(sel.contour);
+  if (engine.smoothJoin(sel.index) < 0) {
+    refresh();
+    ui.message = "a smooth join needs a corner with a straight segment (two corners in a row) " +
+      "on one side and a curve on the other";
+    status();
+    return;
+  }
+  refresh();
 }
 
 function status() {
@@ -217,6 +361,8 @@ function syncControls() {
   if (point && range) slider.value = point.shape;
   $("shape-value").textContent = point && range ? point.shape.toFixed(3) : "";
   $("corner").disabled = !point;
+  $("free-tangent").disabled = !point;
+  $("join").disabled = !point || !point.corner;
   $("delete").disabled = !point;
   $("delete-contour").disabled = active < 0;
   $("new-contour").disabled = active < 0;
@@ -292,8 +438,9 @@ function fit() {
 // ---- Pointer: points, pan, pinch ----
 
 function endDrag() {
-  if (!ui.drag) return;
+  if (!ui.drag && !ui.tdrag) return;
   ui.drag = null;
+  ui.tdrag = null;
   engine.endDrag();
   refresh();
 }
@@ -346,7 +493,14 @@ canvas.addEventListener("pointerdown", (e) => {
     return;
   }
   const p = toDoc(s);
-  const radius = (e.pointerType === "touch" ? TOUCH_RADIUS : PICK_RADIUS) / view.scale;
+  const pick = e.pointerType === "touch" ? TOUCH_RADIUS : PICK_RADIUS;
+  const handle = pickHandle(s, pick);
+  if (handle) {
+    ui.lastDown = null;
+    ui.tdrag = { id: e.pointerId, ...ui.sel, incoming: handle.incoming };
+    return;
+  }
+  const radius = pick / view.scale;
   const near = engine.nearestPoint(p.x, p.y, radius);
   const now = performance.now();
   if (near) {
@@ -430,6 +584,10 @@ canvas.addEventListener("pointermove", (e) => {
     draw();
     return;
   }
+  if (ui.tdrag && ui.tdrag.id === e.pointerId) {
+    dragHandle(s);
+    return;
+  }
   const p = toDoc(s);
   if (ui.drag && ui.drag.id === e.pointerId) {
     const t0 = performance.now();
@@ -468,6 +626,7 @@ function pointerEnd(e) {
     return;
   }
   if (ui.drag && ui.drag.id === e.pointerId) endDrag();
+  if (ui.tdrag && ui.tdrag.id === e.pointerId) endDrag();
   if (ui.tap && ui.tap.id === e.pointerId) {
     const { p } = ui.tap;
     ui.tap = null;
@@ -526,6 +685,8 @@ function toggleCorner() {
   refresh();
 }
 $("corner").addEventListener("click", toggleCorner);
+$("free-tangent").addEventListener("click", clearTangent);
+$("join").addEventListener("click", smoothJoin);
 
 function deleteSelected() {
   const sel = selection();
@@ -588,12 +749,40 @@ function svgText() {
   return engine.exportSvg(w, h, true);
 }
 function save() { download(engine.save(), "drawing.kappa.json", "application/json"); }
+
+// The drawing as a UFO glyph (glif.js): the opened glyph's name, advance and lib kept.
+function glifText() {
+  const outlines = [];
+  for (let k = 0; k < engine.contourCount(); k++) {
+    outlines.push(pathElements(engine.contourPathData(k)));
+  }
+  const { contours } = JSON.parse(engine.save());
+  return writeGlif({ outlines, docs: contours, glyph: ui.glyph });
+}
+function glifName() {
+  return ui.glyph?.documentElement.getAttribute("name") || "drawing";
+}
+$("export-glif").addEventListener("click",
+  () => download(glifText(), `${glifName()}.glif`, "application/xml"));
 $("save").addEventListener("click", save);
 $("export").addEventListener("click", () => download(svgText(), "drawing.svg", "image/svg+xml"));
 
 // Opens a drawing from text (a file, a drop or a paste): an undoable step.
 function openText(text) {
   endDrag();
+  let glyph = null;
+  if (isGlif(text)) {
+    try {
+      const scheme = engine.scheme();
+      const parsed = parseGlif(text, scheme, engine.neutralShape(scheme));
+      glyph = parsed.glyph;
+      text = JSON.stringify({ contours: parsed.docs });
+    } catch (e) {
+      ui.message = `not opened: ${e.message}`;
+      status();
+      return false;
+    }
+  }
   const r = engine.open(text, true);
   if (r < 0) {
     ui.message = `not opened: ${engine.lastError()}`;
@@ -601,6 +790,7 @@ function openText(text) {
     return false;
   }
   ui.sel = null;
+  ui.glyph = glyph;
   refresh();
   fit();
   return true;
@@ -674,6 +864,10 @@ document.addEventListener("keydown", (e) => {
     handled = nudge(ARROWS[key][0] * step, ARROWS[key][1] * step);
   } else if (key === "c") {
     toggleCorner();
+  } else if (key === "t") {
+    clearTangent();
+  } else if (key === "j") {
+    smoothJoin();
   } else if (key === "f") {
     fit();
   } else if (key === " ") {
@@ -737,6 +931,14 @@ window.kappa = {
   setShape: (i, a) => edit(() => engine.setShape(i, a)),
   toggleCorner: (i) => edit(() => engine.toggleCorner(i)),
   setClosed: (c) => edit(() => engine.setClosed(c)),
+  tangents: (k = current()) => engine.tangents(k),
+  setTangent: (i, x, y, incoming = false) => edit(() => engine.setTangent(i, x, y, incoming)),
+  clearTangent: (i, incoming = false) => edit(() => engine.clearTangent(i, incoming)),
+  smoothJoin: (i) => edit(() => engine.smoothJoin(i)),
+  // The selected point's tangent handles in screen px (for a pointer to drag).
+  handles: () => handles().map((h) => ({ incoming: h.incoming, set: h.set, knob: h.knob })),
+  canUndo: () => engine.canUndo(),
+  exportGlif: () => glifText(),
   setScheme: (s) => edit(() => engine.setScheme(s)),
   deleteContour: (k) => edit(() => engine.deleteContour(k)),
   clear: () => edit(() => engine.clear()),

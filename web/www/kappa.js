@@ -56,6 +56,27 @@ export class Engine {
   setShape(i, a) { return this.x.kp_set_shape(i, a); }
   dragShape(i, a) { return this.x.kp_drag_shape(i, a); }
   toggleCorner(i) { return this.x.kp_toggle_corner(i); }
+  // Prescribed tangents (`incoming`: the side of a corner where a piece arrives). A drag of a
+  // handle is one undo step until endDrag().
+  setTangent(i, x, y, incoming = false) { return this.x.kp_set_tangent(i, x, y, incoming ? 1 : 0); }
+  dragTangent(i, x, y, incoming = false) { return this.x.kp_drag_tangent(i, x, y, incoming ? 1 : 0); }
+  clearTangent(i, incoming = false) { return this.x.kp_clear_tangent(i, incoming ? 1 : 0); }
+  // Corner i becomes a smooth line-to-curve join: the count of failed pieces, or -1 where it
+  // has no line on one side and curve on the other.
+  smoothJoin(i) {
+    const r = this.x.kp_smooth_join(i);
+    return r < 0 ? -1 : r;
+  }
+  // Per point {out: [x, y] | null, in: [x, y] | null}.
+  tangents(k) {
+    const n = this.x.kp_tangents(k);
+    const v = this.nums(n);
+    const out = [];
+    const vec = (a, b) => (Number.isNaN(a) ? null : [a, b]);
+    for (let i = 0; i < n; i += 4) out.push({ out: vec(v[i], v[i + 1]), in: vec(v[i + 2], v[i + 3]) });
+    return out;
+  }
+  neutralShape(scheme) { return this.x.kp_neutral_shape(SCHEMES.indexOf(scheme)); }
   setClosed(closed) { return this.x.kp_set_closed(closed ? 1 : 0); }
   closed(k) { return this.x.kp_closed(k) === 1; }
   undo() { return this.x.kp_undo() === 1; }
@@ -132,6 +153,11 @@ export class Engine {
   // The encoded path and comb as Float64Array views (valid until the next engine call).
   pathData() {
     const n = this.x.kp_path();
+    return this.f64(this.x.kp_path_ptr(), n);
+  }
+  // The outline of contour k alone (one subpath, closed when the contour is).
+  contourPathData(k) {
+    const n = this.x.kp_contour_path(k);
     return this.f64(this.x.kp_path_ptr(), n);
   }
   piecePathData(k, j) {

@@ -86,11 +86,11 @@ pub struct FontArgs {
         allow_negative_numbers = true
     )]
     quad_tolerance: f64,
-    /// Hold the original's axis as the tangent at extremum nodes in the solve (G2 there,
-    /// the node no longer a curvature peak). The UFO's κ sources do not record these
-    /// tangents yet: re-solved by the path tool, those contours come back without them.
+    /// Do not hold the original's axis as the tangent at extremum nodes, nor its direction
+    /// at the ends of pieces, in the solve (by default they are held: G2 there, the node no
+    /// longer a curvature peak; the UFO's κ sources record them).
     #[arg(long)]
-    extremum_tangents: bool,
+    no_extremum_tangents: bool,
     /// The family name of the written font.
     #[arg(long, value_name = "NAME", default_value = "")]
     family: String,
@@ -188,7 +188,7 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
         FontOutlines::parse(&data).map_err(|e| Failure::new(e).context(args.font.display()))?;
     let upem = font.units_per_em();
     let mut options = DraftOptions::for_units_per_em(upem).with_scheme(scheme, shape);
-    options.extremum_tangents = args.extremum_tangents;
+    options.extremum_tangents = !args.no_extremum_tangents;
     if let Some(t) = args.tolerance {
         if !(t.is_finite() && t > 0.0) {
             return Err(Failure::new("--tolerance must be a positive number"));
@@ -341,8 +341,11 @@ fn kappa_source(drafted: &DraftedGlyph, scheme: Scheme) -> Result<String> {
         .contours
         .iter()
         .map(|c| {
-            let mut points = Vec::new();
+            let mut points: Vec<EditPoint> = Vec::new();
             let single = matches!(c.pieces.as_slice(), [p] if p.closed);
+            let tangent = |a: &kappa::glyph::Anchor| a.tangent.map(|v| [v.x, v.y]);
+            // The direction in which the previous piece arrives at the next corner.
+            let mut arriving = None;
             for p in &c.pieces {
                 let take = if single {
                     p.anchors.len()
@@ -350,13 +353,21 @@ fn kappa_source(drafted: &DraftedGlyph, scheme: Scheme) -> Result<String> {
                     p.anchors.len().saturating_sub(1)
                 };
                 for (k, a) in p.anchors.iter().take(take).enumerate() {
+                    let corner = !single && (k == 0 || a.kind == AnchorKind::Corner);
                     points.push(EditPoint {
                         x: a.point.x,
                         y: a.point.y,
                         shape: a.a,
-                        corner: !single && (k == 0 || a.kind == AnchorKind::Corner),
+                        corner,
+                        tangent: tangent(a),
+                        tangent_in: if k == 0 { arriving.take() } else { None },
                     });
                 }
+                arriving = p.anchors.last().and_then(tangent);
+            }
+            // The last piece arrives at the first corner.
+            if let (false, Some(first)) = (single, points.first_mut()) {
+                first.tangent_in = arriving;
             }
             PathDoc {
                 points,

@@ -45,8 +45,7 @@ pub struct DraftOptions {
     /// stays within the tolerance. The curve is then G2 at the anchor with an exactly
     /// horizontal or vertical tangent, where the node outline would otherwise turn the
     /// handles after the solve (G1 only); the anchor is no longer a curvature peak. Off by
-    /// default (`kappa font` turns it on); about three times the drafting time where
-    /// pieces hold many tangents.
+    /// default (`kappa font` turns it on).
     pub extremum_tangents: bool,
 }
 
