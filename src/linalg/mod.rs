@@ -1,5 +1,3 @@
-// `!(x > 0.0)` is meant: it is also true for NaN, which must count as a zero pivot.
-#![allow(clippy::neg_cmp_op_on_partial_ord)]
 //! Small direct solvers: banded and dense LU with partial pivoting, a bordered solve for
 //! cyclic (wrap-around) banded systems, and (cyclic) tridiagonal systems with vector
 //! right-hand sides. All buffers are owned by the structs and reused between solves.

@@ -2,6 +2,9 @@
 //! Thomas algorithm, Sherman–Morrison for the cyclic case, and a pivoted elimination at
 //! order 3.
 
+// `!(x > 0.0)` is meant: it is also true for NaN, which must count as a zero pivot.
+#![allow(clippy::neg_cmp_op_on_partial_ord)]
+
 use super::pivot;
 
 /// Solve the tridiagonal system `a_i x_{i-1} + b_i x_i + c_i x_{i+1} = d_i` (with `a_0` and

@@ -742,12 +742,7 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         if self.prob.tangents.is_empty() {
             let out = self.ws.solve_cold(&self.prob, settings, &mut self.scratch);
             if out.converged {
-                self.free = Some(FreeCurve {
-                    points: self.points.clone(),
-                    closed: self.prob.closed,
-                    basis: self.prob.basis.clone(),
-                    state: self.ws.state.clone(),
-                });
+                self.free = Some(self.free_curve(self.ws.state.clone()));
             }
             return out;
         }
@@ -755,15 +750,18 @@ impl<P: Coords<D>, const D: usize, const B: usize> SolverN<P, D, B> {
         let out = self
             .ws
             .solve_cold_tangents(&self.prob, settings, &mut self.scratch, &mut free);
-        self.free = cached.or_else(|| {
-            free.map(|state| FreeCurve {
-                points: self.points.clone(),
-                closed: self.prob.closed,
-                basis: self.prob.basis.clone(),
-                state,
-            })
-        });
+        self.free = cached.or_else(|| free.map(|state| self.free_curve(state)));
         out
+    }
+
+    /// `state` as the free curve of the current input (see `SolverN::free`).
+    fn free_curve(&self, state: State<D>) -> FreeCurve<D> {
+        FreeCurve {
+            points: self.points.clone(),
+            closed: self.prob.closed,
+            basis: self.prob.basis.clone(),
+            state,
+        }
     }
 
     /// The solution for open input on one line: straight segments with `c_j = p_j`, joints

@@ -231,9 +231,14 @@ struct Solved {
 
 /// The point of a piece at position `s` (segment index + t).
 fn eval_at(segs: &[PathSeg], s: f64) -> Point {
-    let n = segs.len();
-    let i = (s.floor().max(0.0) as usize).min(n - 1);
-    segs[i].eval((s - i as f64).clamp(0.0, 1.0))
+    let (i, t) = locate(segs, s);
+    segs[i].eval(t)
+}
+
+/// The segment and parameter of position `s` along `segs` (clamped to them).
+fn locate(segs: &[PathSeg], s: f64) -> (usize, f64) {
+    let i = (s.floor().max(0.0) as usize).min(segs.len() - 1);
+    (i, (s - i as f64).clamp(0.0, 1.0))
 }
 
 /// |κ| of a piece at position `s`; at a joint, the mean of both sides.

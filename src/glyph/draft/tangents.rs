@@ -4,15 +4,13 @@
 use kurbo::{ParamCurve, PathSeg, Vec2};
 
 use super::distance::{within, Target};
-use super::{AnchorKind, Cand, Drafter, Solved};
+use super::{locate, AnchorKind, Cand, Drafter, Solved};
 
 /// The original's unit tangent at `s` (a position along `segs`, as
 /// [`eval_at`](super::eval_at) takes it), in its direction of travel: the direction of a
 /// chord 1e-6 of a segment long (`None` where that has no length).
 fn direction_at(segs: &[PathSeg], s: f64) -> Option<Vec2> {
-    let n = segs.len();
-    let i = (s.floor().max(0.0) as usize).min(n - 1);
-    let t = (s - i as f64).clamp(0.0, 1.0);
+    let (i, t) = locate(segs, s);
     let (a, b) = if t < 1.0 {
         (segs[i].eval(t), segs[i].eval((t + 1e-6).min(1.0)))
     } else {
