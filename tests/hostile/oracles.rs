@@ -57,10 +57,11 @@ pub fn arrays3(pts: &[Point3]) -> Vec<[f64; 3]> {
 
 /// The κ/εκ solver's "repeated" threshold in units of the pair's rounding: consecutive
 /// points with `|a − b| ≤ ULP_COINCIDENT · ε · max |coordinate|` are an
-/// `Error::RepeatedPoint` (`ULP_COINCIDENT` in src/spline.rs).
+/// `Error::RepeatedPoint` (`ULP_COINCIDENT` in src/spline/checks.rs).
 pub const ULP_COINCIDENT: f64 = 4.0;
 /// The κ/εκ solver's collinearity threshold, relative to the size: open input whose points
-/// are this close to one line is solved as a straight curve (`COINCIDENT` in src/spline.rs).
+/// are this close to one line is solved as a straight curve (`COINCIDENT` in
+/// src/spline/checks.rs).
 pub const COLLINEAR: f64 = 1e-12;
 
 /// Whether two points coincide to within the rounding of their coordinates (the solver's

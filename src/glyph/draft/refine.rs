@@ -1,0 +1,195 @@
+//! The refinement: anchors added where the draft strays furthest from the original
+//! ([`draft`](super::draft), step 3).
+
+use kurbo::{ParamCurve, PathSeg, Point};
+
+use super::distance::Target;
+use super::{eval_at, AnchorKind, Cand, Drafter, Solved};
+
+/// Anchor sets a refinement round tries before it gives up (each a solve; see
+/// [`Piece::within_tolerance`](super::Piece::within_tolerance)).
+const REFINE_ATTEMPTS: usize = 8;
+
+/// Refinement anchors are not placed closer than this fraction of
+/// [`DraftOptions::min_spacing`](super::DraftOptions::min_spacing) to an existing anchor. A
+/// tenth (6 units at 1 000 units per em) lets the refinement reach small fillets, rounded
+/// tips and bracketed serifs: on the alphabet of EB Garamond 12, 56 of 65 glyphs come
+/// within 0.004 em against 37 with a quarter, for 1.5 % more anchors; DejaVu Sans' alphabet
+/// is unchanged.
+const REFINE_GAP: f64 = 0.1;
+
+/// `x` with the lowest 23 of its 52 mantissa bits cleared (a relative step of 2⁻²⁹, about
+/// 2e-9): values that differ only by rounding compare equal, but for the rare pair that
+/// straddles a step.
+fn rounded(x: f64) -> f64 {
+    f64::from_bits(x.to_bits() & !((1u64 << 23) - 1))
+}
+
+/// The spans that strayed (`Some`), worst first, and those of them that get an anchor in
+/// the first attempt of a refinement round: in that order, each span none of whose
+/// neighbours is taken yet, at most `budget`.
+fn pick_spans(
+    spans: &[Option<(f64, f64)>],
+    closed: bool,
+    budget: usize,
+) -> (Vec<usize>, Vec<usize>) {
+    let m = spans.len();
+    // Deviations equal to about nine digits sort by position: the mirror-image spans of a
+    // symmetric outline then get their anchors in the same order whatever the last digits
+    // of the solve are.
+    let deviation = |i: usize| spans[i].map_or(0.0, |x| rounded(x.0));
+    let mut order: Vec<usize> = (0..m).filter(|&i| spans[i].is_some()).collect();
+    order.sort_by(|&a, &b| deviation(b).total_cmp(&deviation(a)).then(a.cmp(&b)));
+    let neighbours = |i: usize, j: usize| {
+        if closed {
+            (i + 1) % m == j || (j + 1) % m == i
+        } else {
+            i + 1 == j || j + 1 == i
+        }
+    };
+    let mut picked: Vec<usize> = Vec::new();
+    for &i in &order {
+        if picked.len() >= budget {
+            break;
+        }
+        if !picked.iter().any(|&j| neighbours(i, j)) {
+            picked.push(i);
+        }
+    }
+    (order, picked)
+}
+
+impl Drafter<'_> {
+    /// One refinement round: new anchors at the worst samples of the spans that strayed,
+    /// solved. Tries in turn: one anchor in each of the worst spans that are not neighbours
+    /// (at most `budget`), only the worst one, other places in each straying span (its
+    /// middle, quarters); returns the first set that solves with the number of anchors
+    /// added, or `None` if none does.
+    pub(super) fn refine(
+        &mut self,
+        segs: &[PathSeg],
+        closed: bool,
+        anchors: &[Cand],
+        spans: &[Option<(f64, f64)>],
+        budget: usize,
+    ) -> Option<(Vec<Cand>, Solved, usize)> {
+        let (order, picked) = pick_spans(spans, closed, budget);
+        let first: Vec<f64> = picked
+            .iter()
+            .filter_map(|&i| spans[i])
+            .map(|x| x.1)
+            .collect();
+        let mut attempts: Vec<Vec<f64>> = vec![first.clone()];
+        let n = segs.len() as f64;
+        for &i in &order {
+            let Some((_, worst)) = spans[i] else {
+                continue;
+            };
+            if first != [worst] {
+                attempts.push(vec![worst]);
+            }
+            // The span's ends (a closed piece's last span wraps around).
+            let a = anchors[i].s;
+            let b = anchors.get(i + 1).map_or(anchors[0].s + n, |c| c.s);
+            for f in [0.5, 0.25, 0.75] {
+                let s = a + f * (b - a);
+                attempts.push(vec![if s >= n && closed { s - n } else { s }]);
+            }
+        }
+        attempts.truncate(REFINE_ATTEMPTS);
+        for places in attempts {
+            if places.is_empty() {
+                continue;
+            }
+            let mut more = anchors.to_vec();
+            more.extend(places.iter().map(|&s| Cand {
+                s,
+                kind: AnchorKind::Refined,
+            }));
+            more.sort_by(|a, b| a.s.total_cmp(&b.s));
+            if let Ok(solved) = self.solve(segs, closed, &more) {
+                return Some((more, solved, places.len()));
+            }
+        }
+        None
+    }
+
+    /// For each span between consecutive anchors (a closed piece's last span wraps around to
+    /// its first anchor), the original sample furthest from the draft if further than the
+    /// tolerance: its distance and position. One pass over `k` samples per segment, midway
+    /// between the measurement samples of [`Target::deviation`] (which would sit on anchors
+    /// at joints), skipping samples closer than [`REFINE_GAP`] of the minimum spacing to the
+    /// span's ends.
+    pub(super) fn worst_per_span(
+        &self,
+        segs: &[PathSeg],
+        drafted: &Target<'_>,
+        anchors: &[Cand],
+        closed: bool,
+        k: usize,
+    ) -> Vec<Option<(f64, f64)>> {
+        let m = anchors.len();
+        let spans = if closed { m } else { m - 1 };
+        let points: Vec<Point> = anchors.iter().map(|c| eval_at(segs, c.s)).collect();
+        let gap = REFINE_GAP * self.options.min_spacing;
+        let mut worst: Vec<Option<(f64, f64)>> = vec![None; spans];
+        let mut span = 0;
+        for (i, seg) in segs.iter().enumerate() {
+            for j in 0..k {
+                let t = (j as f64 + 0.5) / k as f64;
+                let s = i as f64 + t;
+                while span + 1 < m && anchors[span + 1].s <= s {
+                    span += 1;
+                }
+                // Before the first anchor of a closed piece: its last span.
+                let here = if anchors[0].s > s { m - 1 } else { span }.min(spans - 1);
+                let p = seg.eval(t);
+                let (a, b) = (points[here], points[(here + 1) % m]);
+                if (p - a).hypot() < gap || (p - b).hypot() < gap {
+                    continue;
+                }
+                let floor = worst[here].map_or(self.options.tolerance, |(d, _)| d);
+                if drafted.distance_above(p, floor) {
+                    worst[here] = Some((drafted.distance(p), s));
+                }
+            }
+        }
+        worst
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pick_spans_skips_neighbours() {
+        let d = |x: f64| Some((x, 0.0));
+        // Open: spans 1 and 2 stray, 2 worse; 1 is its neighbour, 4 is not.
+        let spans = [None, d(3.0), d(5.0), None, d(4.0)];
+        let (order, picked) = pick_spans(&spans, false, 8);
+        assert_eq!(order, [2, 4, 1]);
+        assert_eq!(picked, [2, 4]);
+        assert_eq!(pick_spans(&spans, false, 1).1, [2]);
+        // Closed: the last span neighbours the first.
+        let spans = [d(1.0), None, None, d(2.0)];
+        assert_eq!(pick_spans(&spans, true, 8).1, [3]);
+        assert_eq!(pick_spans(&spans, false, 8).1, [3, 0]);
+        assert!(pick_spans(&[None, None], true, 8).0.is_empty());
+    }
+
+    #[test]
+    fn pick_spans_orders_rounding_ties_by_position() {
+        let d = |x: f64| Some((x, 0.0));
+        // Mirror-image spans whose deviations differ in the last digits only: by position,
+        // whichever is larger.
+        let x = 7.532618028549983;
+        for (a, b) in [(x, x * (1.0 + 4.0 * f64::EPSILON)), (x * (1.0 + 1e-12), x)] {
+            let spans = [None, d(a), None, d(b), d(3.0)];
+            assert_eq!(pick_spans(&spans, true, 8).0, [1, 3, 4]);
+        }
+        // A real difference still counts.
+        let spans = [None, d(x), None, d(x * (1.0 + 1e-7)), d(3.0)];
+        assert_eq!(pick_spans(&spans, true, 8).0, [3, 1, 4]);
+    }
+}
