@@ -40,7 +40,8 @@ mod spline;
 mod viable;
 
 pub use hermite::{
-    Control, Hermite, HermiteEnd, Profile, Turning, END_TOLERANCE, NODES_PER_ITERATION,
+    Control, Hermite, HermiteEnd, Profile, Turning, END_TOLERANCE, HERMITE_ITERATIONS,
+    NODES_PER_ITERATION,
 };
 pub use quad::PIECE_TURN;
 pub use segment::{IntrinsicDeriv, IntrinsicDeriv2, IntrinsicSeg, MAX_TURNING};

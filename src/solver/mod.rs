@@ -1275,7 +1275,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         set: &Settings,
         scratch: &mut Problem<D>,
     ) -> Outcome {
-        let out = self.cascade(prob, set, scratch);
+        let out = self.cascade(prob, set, scratch, true);
         if out.converged || out.iterations >= set.max_iterations {
             return out;
         }
@@ -1285,7 +1285,13 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// Newton after a few classic iterations (3, 1, then 12), then continuation in the
     /// shape parameters from each of [`A_HOMES`]. Every attempt is capped; the total
     /// iteration count is reported, and the best state found is kept if none converges.
-    fn cascade(&mut self, prob: &Problem<D>, set: &Settings, scratch: &mut Problem<D>) -> Outcome {
+    fn cascade(
+        &mut self,
+        prob: &Problem<D>,
+        set: &Settings,
+        scratch: &mut Problem<D>,
+        shapes: bool,
+    ) -> Outcome {
         let mut total = 0;
         let mut best: Option<(Outcome, State<D>)> = None;
         let keep = |ws: &Self, out: Outcome, best: &mut Option<(Outcome, State<D>)>| {
@@ -1313,6 +1319,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             keep(self, out, &mut best);
         }
         let homes: &[f64] = match prob.basis.first() {
+            _ if !shapes => &[],
             Some(Basis::Trig(_)) => &A_HOMES_TRIG,
             _ => &A_HOMES,
         };

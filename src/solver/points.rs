@@ -78,7 +78,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 max_iterations: set.max_iterations - total,
                 ..*set
             };
-            let start = self.cascade(&moving, &rest, scratch);
+            let start = self.cascade(&moving, &rest, scratch, true);
             total += start.iterations;
             if !start.converged {
                 continue;
@@ -127,7 +127,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             let mut step = self.solve(moving, &budget(total, STEP_BUDGET), 0, false);
             total += step.iterations;
             if !step.converged {
-                step = self.cascade(moving, &budget(total, usize::MAX), scratch);
+                step = self.cascade(moving, &budget(total, usize::MAX), scratch, true);
                 total += step.iterations;
             }
             if step.converged {
