@@ -54,6 +54,7 @@ def draw_contours(
     quadratic: bool = False,
     max_err: float = 1.0,
     accuracy: Optional[float] = None,
+    tolerance: Optional[float] = None,
     accept_unconverged: bool = False,
 ) -> None:
     """Draws ``contours`` as one glyph into ``pen`` (a fontTools segment pen or point pen).
@@ -61,8 +62,10 @@ def draw_contours(
     - ``direction``: "postscript" (outer contours counter-clockwise, y up: CFF, UFO),
       "truetype" (outer clockwise) or None (as drawn). Decided per contour by nesting.
     - ``nodes``: "anchors" (the contours' points are the on-curve points; every span
-      between two of them is one cubic within ``accuracy``, default 1e-4 of the contour's
-      size) or "joints" (the exact curve: κ quadratics, εκ-cubic cubics, fitted εκ-trig).
+      between two of them is one cubic where that is within ``tolerance / 2``, default
+      ``tolerance`` 4e-3 of the contour's size, else cubics within ``accuracy``, default
+      1e-4 of the size) or "joints" (the exact curve: κ quadratics, εκ-cubic cubics,
+      fitted εκ-trig).
     - ``quadratic``: quadratic curves for TrueType: cubics converted by fontTools' cu2qu
       within ``max_err`` font units; with ``nodes="joints"`` a κ contour is drawn with its
       own quadratics, exactly.
@@ -74,6 +77,7 @@ def draw_contours(
         direction=direction,
         nodes=nodes,
         accuracy=accuracy,
+        tolerance=tolerance,
         accept_unconverged=accept_unconverged,
     )
     replay(elements, _target(pen, quadratic, max_err))
@@ -107,6 +111,7 @@ class KappaPen:
         quadratic: bool = False,
         max_err: float = 1.0,
         accuracy: Optional[float] = None,
+        tolerance: Optional[float] = None,
         accept_unconverged: bool = False,
     ) -> None:
         self.outPen = outPen
@@ -118,6 +123,7 @@ class KappaPen:
             quadratic=quadratic,
             max_err=max_err,
             accuracy=accuracy,
+            tolerance=tolerance,
             accept_unconverged=accept_unconverged,
         )
         self.contours: list = []

@@ -17,10 +17,13 @@ false for filters declared in a lib).
 
 Options (``KappaFilter(nodes="joints")`` on the command line):
 
-- ``nodes``: "anchors" (default: the κ points are the on-curve nodes, each span between
-  two of them one cubic within ``accuracy`` em, default 1e-4) or "joints" (the exact
-  curve: κ quadratics raised to cubics by ufo2ft's pipeline as needed, εκ-cubic cubics).
-- ``accuracy``: in em (default 1e-4).
+- ``nodes``: "anchors" (default: the κ points are the on-curve nodes, as ``kappa font``
+  writes UFO outlines; each span between two of them is one cubic where that cubic is
+  within ``tolerance / 2``, else cubics within ``accuracy``) or "joints" (the exact curve,
+  its nodes the joints between segments: κ quadratics, εκ-cubic cubics, εκ-trig fitted).
+- ``accuracy``, ``tolerance``: in em (default 1e-4 and 4e-3, ``kappa font``'s drafting
+  tolerance: a span is one cubic where that is within 2 units of a 1000-unit em, else
+  cubics within 0.1 units).
 - ``acceptUnconverged``: draw a piece's best curve when its solve did not converge
   (default: fail the build with NotConvergedError).
 
@@ -36,8 +39,10 @@ from .pen import replay
 
 __all__ = ["KappaFilter", "KAPPA_LIB_KEY"]
 
-#: Anchor-node accuracy, in em.
+#: Anchor-node accuracy where a span needs several cubics, in em.
 DEFAULT_ACCURACY = 1e-4
+#: Anchor-node tolerance: a span is one cubic where that is within half of it, in em.
+DEFAULT_TOLERANCE = 4e-3
 
 
 class KappaFilter(BaseFilter):
@@ -46,6 +51,7 @@ class KappaFilter(BaseFilter):
     _kwargs = {
         "nodes": "anchors",
         "accuracy": DEFAULT_ACCURACY,
+        "tolerance": DEFAULT_TOLERANCE,
         "acceptUnconverged": False,
     }
     _pre = True
@@ -53,7 +59,8 @@ class KappaFilter(BaseFilter):
     def set_context(self, font, glyphSet):
         ctx = super().set_context(font, glyphSet)
         upem = getattr(getattr(font, "info", None), "unitsPerEm", None) or 1000
-        ctx.units = float(self.options.accuracy) * float(upem)
+        ctx.accuracy = float(self.options.accuracy) * float(upem)
+        ctx.tolerance = float(self.options.tolerance) * float(upem)
         return ctx
 
     def filter(self, glyph) -> bool:
@@ -66,7 +73,8 @@ class KappaFilter(BaseFilter):
                 contours,
                 direction="postscript",
                 nodes=self.options.nodes,
-                accuracy=self.context.units,
+                accuracy=self.context.accuracy,
+                tolerance=self.context.tolerance,
                 accept_unconverged=bool(self.options.acceptUnconverged),
             )
         except KappaError as e:

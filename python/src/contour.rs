@@ -13,8 +13,15 @@ use crate::curve::{scheme, scheme_name, Curve};
 use crate::errors::to_py;
 use crate::points::{self, Element};
 
-/// Default accuracy of the anchor-node outline, relative to the contour's size.
+/// Default accuracy of the anchor-node outline where a span needs several cubics, relative
+/// to the contour's size.
 const NODE_ACCURACY: f64 = 1e-4;
+
+/// Default tolerance of the anchor-node outline: a span between two anchors is one cubic
+/// where that cubic is within half of it, relative to the contour's size.
+/// 4e-3 is `kappa font`'s default drafting tolerance (0.004 em): on a four-point κ "o" one
+/// cubic per quarter is 1–2.7 units of a 600-unit glyph off the exact curve.
+const NODE_TOLERANCE: f64 = 4e-3;
 
 /// A contour: points with a shape each, corner flags and optional tangents, open or
 /// closed, solved as the path tool solves it — one curve per piece between corners, or
@@ -46,25 +53,66 @@ impl Contour {
         Contour { editor }
     }
 
-    /// The outline: pieces joined, closed when the contour is (see `Editor::outline`).
-    pub fn outline(&self) -> BezPath {
-        self.editor.outline()
+    /// Piece `k` as a path: a straight line for a piece of two points (the solver's
+    /// segment there is a straight Bézier), else the piece's exact curve (εκ-trig fitted).
+    fn piece_path(&self, k: usize) -> BezPath {
+        let idx = self.editor.piece_points(k);
+        let straight =
+            idx.len() == 2 && self.editor.piece_spline(k).is_some_and(|s| !s.is_closed());
+        if straight {
+            let pts = &self.editor.doc().points;
+            let mut p = BezPath::new();
+            p.move_to(pts[idx[0]].point());
+            p.line_to(pts[idx[1]].point());
+            return p;
+        }
+        self.editor.piece_bezpath(k)
     }
 
-    /// The outline with the anchors (the contour's points) as its nodes, each span between
-    /// two anchors one cubic within `accuracy` (more where one is not enough). Open contours
-    /// and contours with a piece that has no curve give their joint outline.
-    pub fn anchor_path(&self, accuracy: Option<f64>) -> BezPath {
+    /// The outline: pieces joined end to start, closed when the contour is (as
+    /// `Editor::outline`, with pieces of two points as lines). A piece without a curve
+    /// leaves a gap.
+    pub fn outline(&self) -> BezPath {
+        let mut out = BezPath::new();
+        let (mut joined, mut whole) = (false, self.editor.pieces() > 0);
+        for k in 0..self.editor.pieces() {
+            let path = self.piece_path(k);
+            if path.elements().is_empty() {
+                (joined, whole) = (false, false);
+                continue;
+            }
+            for (j, el) in path.elements().iter().enumerate() {
+                match el {
+                    kurbo::PathEl::MoveTo(_) if j == 0 && joined => {}
+                    kurbo::PathEl::ClosePath => {}
+                    el => out.push(*el),
+                }
+            }
+            joined = true;
+        }
+        let doc = self.editor.doc();
+        if whole && doc.closed && doc.points.len() >= 3 {
+            out.close_path();
+        }
+        out
+    }
+
+    /// The outline with the anchors (the contour's points) as its nodes (the library's
+    /// `glyph::anchor_outline`, as `kappa font` writes UFO outlines): each span between two
+    /// anchors one cubic where one is within `tolerance / 2`, else cubics within
+    /// `accuracy`; with the largest distance measured from the exact curve. Open contours
+    /// and contours with a piece that has no curve give their joint outline (distance 0).
+    pub fn anchor_path(&self, accuracy: Option<f64>, tolerance: Option<f64>) -> (BezPath, f64) {
         let exact = self.outline();
         let doc = self.editor.doc();
         let n = self.editor.pieces();
         if !doc.closed || doc.points.len() < 3 || n == 0 {
-            return exact;
+            return (exact, 0.0);
         }
         let mut pieces = Vec::with_capacity(n);
         for k in 0..n {
             let Some(spline) = self.editor.piece_spline(k) else {
-                return exact;
+                return (exact, 0.0);
             };
             let anchors = self
                 .editor
@@ -85,8 +133,9 @@ impl Contour {
                 anchors,
                 closed: spline.is_closed(),
                 spline: spline.clone(),
-                path: self.editor.piece_bezpath(k),
-                hausdorff: None,
+                path: self.piece_path(k),
+                // The room a span's single cubic gets is the tolerance less this.
+                hausdorff: Some(0.0),
                 within_tolerance: true,
                 fallback: false,
             });
@@ -101,15 +150,23 @@ impl Contour {
             hausdorff: None,
         };
         let bbox = exact.bounding_box();
-        let accuracy = accuracy.unwrap_or(NODE_ACCURACY * bbox.width().max(bbox.height()));
-        anchor_outline(&glyph, &exact, accuracy, accuracy).path
+        let size = bbox.width().max(bbox.height());
+        let accuracy = accuracy.unwrap_or(NODE_ACCURACY * size);
+        let tolerance = tolerance.unwrap_or(NODE_TOLERANCE * size);
+        let nodes = anchor_outline(&glyph, &exact, accuracy, tolerance);
+        (nodes.path, nodes.max_error)
     }
 
     /// The outline by node choice: "joints" (exact) or "anchors".
-    pub fn path_by(&self, nodes: &str, accuracy: Option<f64>) -> PyResult<BezPath> {
+    pub fn path_by(
+        &self,
+        nodes: &str,
+        accuracy: Option<f64>,
+        tolerance: Option<f64>,
+    ) -> PyResult<BezPath> {
         match nodes {
             "joints" => Ok(self.outline()),
-            "anchors" => Ok(self.anchor_path(accuracy)),
+            "anchors" => Ok(self.anchor_path(accuracy, tolerance).0),
             _ => Err(PyValueError::new_err(format!(
                 "unknown nodes {nodes:?}: expected \"joints\" or \"anchors\""
             ))),
@@ -325,17 +382,38 @@ impl Contour {
     /// - `nodes="joints"`: the exact curve (κ quadratics as `qCurveTo`, εκ-cubic cubics;
     ///   εκ-trig fitted), its on-curve points the joints between segments.
     /// - `nodes="anchors"`: the contour's own points as the on-curve points, each span
-    ///   between two of them one cubic within `accuracy` (default 1e-4 of the contour's
-    ///   size; spans that need more get more). Closed contours only; open ones give joints.
-    #[pyo3(signature = (nodes = "joints", accuracy = None))]
-    fn elements(&self, nodes: &str, accuracy: Option<f64>) -> PyResult<Vec<Element>> {
-        Ok(points::elements(&self.path_by(nodes, accuracy)?))
+    ///   between two of them one cubic where that is within `tolerance / 2` (default
+    ///   `tolerance` 4e-3 of the contour's size), else cubics within `accuracy` (default
+    ///   1e-4 of the size). Closed contours only; open ones give joints.
+    #[pyo3(signature = (nodes = "joints", accuracy = None, tolerance = None))]
+    fn elements(
+        &self,
+        nodes: &str,
+        accuracy: Option<f64>,
+        tolerance: Option<f64>,
+    ) -> PyResult<Vec<Element>> {
+        Ok(points::elements(&self.path_by(nodes, accuracy, tolerance)?))
+    }
+
+    /// The anchor-node outline (see `elements`) and its largest distance from the exact
+    /// curve, measured: `(elements, max_error)`.
+    #[pyo3(signature = (accuracy = None, tolerance = None))]
+    fn anchor_outline(&self, accuracy: Option<f64>, tolerance: Option<f64>) -> (Vec<Element>, f64) {
+        let (path, error) = self.anchor_path(accuracy, tolerance);
+        (points::elements(&path), error)
     }
 
     /// SVG path data of the outline (see `elements` for `nodes`).
-    #[pyo3(signature = (nodes = "joints", accuracy = None))]
-    fn to_svg(&self, nodes: &str, accuracy: Option<f64>) -> PyResult<String> {
-        Ok(kappa::svg_path_data(&self.path_by(nodes, accuracy)?))
+    #[pyo3(signature = (nodes = "joints", accuracy = None, tolerance = None))]
+    fn to_svg(
+        &self,
+        nodes: &str,
+        accuracy: Option<f64>,
+        tolerance: Option<f64>,
+    ) -> PyResult<String> {
+        Ok(kappa::svg_path_data(
+            &self.path_by(nodes, accuracy, tolerance)?,
+        ))
     }
 
     fn __len__(&self) -> usize {
@@ -375,12 +453,13 @@ pub fn contours_from_json(text: &str) -> PyResult<Vec<Contour>> {
 /// as drawn), nodes as in `Contour.elements`. Raises the first piece error unless
 /// `accept_unconverged` (and then only errors other than NotConvergedError).
 #[pyfunction]
-#[pyo3(signature = (contours, direction = Some("postscript"), nodes = "joints", accuracy = None, accept_unconverged = false))]
+#[pyo3(signature = (contours, direction = Some("postscript"), nodes = "joints", accuracy = None, tolerance = None, accept_unconverged = false))]
 pub fn glyph_elements(
     contours: &Bound<'_, PyAny>,
     direction: Option<&str>,
     nodes: &str,
     accuracy: Option<f64>,
+    tolerance: Option<f64>,
     accept_unconverged: bool,
 ) -> PyResult<Vec<Element>> {
     let direction = match direction {
@@ -401,7 +480,12 @@ pub fn glyph_elements(
             .map_err(|_| PyTypeError::new_err("contours must be Contour objects"))?;
         let c = c.get();
         c.check(accept_unconverged)?;
-        path.extend(c.path_by(nodes, accuracy)?.elements().iter().copied());
+        path.extend(
+            c.path_by(nodes, accuracy, tolerance)?
+                .elements()
+                .iter()
+                .copied(),
+        );
     }
     let path = match direction {
         Some(d) => orient(&path, d),

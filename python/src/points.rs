@@ -112,38 +112,68 @@ pub fn flags(obj: &Bound<'_, PyAny>, what: &str) -> PyResult<Vec<bool>> {
     iter.map(|item| item?.is_truthy()).collect()
 }
 
-/// A path element in fontTools' RecordingPen form: `(operator, (points...))`.
-pub type Element = (&'static str, Vec<Xy>);
+/// A path element in fontTools' RecordingPen form: `(operator, (points...))`, a tuple of
+/// a string and a tuple of `(x, y)` tuples in Python.
+pub struct Element(pub &'static str, pub Vec<Xy>);
+
+impl<'py> IntoPyObject<'py> for Element {
+    type Target = PyTuple;
+    type Output = Bound<'py, PyTuple>;
+    type Error = PyErr;
+
+    fn into_pyobject(self, py: Python<'py>) -> Result<Self::Output, Self::Error> {
+        let pts = PyTuple::new(py, self.1)?;
+        PyTuple::new(py, [self.0.into_pyobject(py)?.into_any(), pts.into_any()])
+    }
+}
 
 /// The elements of a kurbo path, as a fontTools RecordingPen records them: `moveTo`,
 /// `lineTo`, `qCurveTo` (one off-curve point), `curveTo`, and `closePath` or, for an open
-/// subpath, `endPath`.
+/// subpath, `endPath`. A closed subpath whose last point misses its start by rounding only
+/// (within [`CLOSE_SNAP`] of the coordinates' magnitude) ends exactly at the start, so that
+/// point pens see one on-curve point there, not two.
 pub fn elements(path: &BezPath) -> Vec<Element> {
     let mut out: Vec<Element> = Vec::with_capacity(path.elements().len() + 1);
     let mut open = false;
+    let mut start = Point::ZERO;
     for el in path.elements() {
         match *el {
             PathEl::MoveTo(p) => {
                 if open {
-                    out.push(("endPath", vec![]));
+                    out.push(Element("endPath", vec![]));
                 }
                 open = true;
-                out.push(("moveTo", vec![xy(p)]));
+                start = p;
+                out.push(Element("moveTo", vec![xy(p)]));
             }
-            PathEl::LineTo(p) => out.push(("lineTo", vec![xy(p)])),
-            PathEl::QuadTo(p1, p2) => out.push(("qCurveTo", vec![xy(p1), xy(p2)])),
-            PathEl::CurveTo(p1, p2, p3) => out.push(("curveTo", vec![xy(p1), xy(p2), xy(p3)])),
+            PathEl::LineTo(p) => out.push(Element("lineTo", vec![xy(p)])),
+            PathEl::QuadTo(p1, p2) => out.push(Element("qCurveTo", vec![xy(p1), xy(p2)])),
+            PathEl::CurveTo(p1, p2, p3) => {
+                out.push(Element("curveTo", vec![xy(p1), xy(p2), xy(p3)]))
+            }
             PathEl::ClosePath => {
+                if let Some(last) = out.last_mut().and_then(|e| e.1.last_mut()) {
+                    let scale = 1.0 + start.x.abs().max(start.y.abs());
+                    let (dx, dy) = (last.0 - start.x, last.1 - start.y);
+                    if dx.abs().max(dy.abs()) <= CLOSE_SNAP * scale {
+                        *last = xy(start);
+                    }
+                }
                 open = false;
-                out.push(("closePath", vec![]));
+                out.push(Element("closePath", vec![]));
             }
         }
     }
     if open {
-        out.push(("endPath", vec![]));
+        out.push(Element("endPath", vec![]));
     }
     out
 }
+
+/// How far (relative to the coordinates' magnitude) a closed subpath's last point may miss
+/// its start and still count as ending there: rounding in the outline's arithmetic, far
+/// below any font unit.
+const CLOSE_SNAP: f64 = 1e-9;
 
 /// Every segment of a path as a cubic `(p0, p1, p2, p3)`: cubics as they are, quadratics
 /// raised exactly, lines with their handles at the thirds.
