@@ -129,7 +129,8 @@ impl<'py> IntoPyObject<'py> for Element {
 
 /// The elements of a kurbo path, as a fontTools RecordingPen records them: `moveTo`,
 /// `lineTo`, `qCurveTo` (one off-curve point), `curveTo`, and `closePath` or, for an open
-/// subpath, `endPath`. A closed subpath whose last point misses its start by rounding only
+/// subpath, `endPath`. A closed subpath's last line back to its start is left to
+/// `closePath`, as fontTools pens imply it. A closed subpath whose last point misses its start by rounding only
 /// (within [`CLOSE_SNAP`] of the coordinates' magnitude) ends exactly at the start, so that
 /// point pens see one on-curve point there, not two.
 pub fn elements(path: &BezPath) -> Vec<Element> {
@@ -152,6 +153,10 @@ pub fn elements(path: &BezPath) -> Vec<Element> {
                 out.push(Element("curveTo", vec![xy(p1), xy(p2), xy(p3)]))
             }
             PathEl::ClosePath => {
+                // A closing line back to the start is implied by `closePath`.
+                if matches!(out.last(), Some(Element("lineTo", p)) if p[0] == xy(start)) {
+                    out.pop();
+                }
                 if let Some(last) = out.last_mut().and_then(|e| e.1.last_mut()) {
                     let scale = 1.0 + start.x.abs().max(start.y.abs());
                     let (dx, dy) = (last.0 - start.x, last.1 - start.y);
