@@ -1,0 +1,1 @@
+"""ufo2ft filters by the names a UFO's lib declares them with (see ``kappa.ufo2ft``)."""
