@@ -114,7 +114,7 @@ def solve(
     tangents: DirectionsLike = None,
     *,
     tolerance: float = 1e-12,
-    max_iterations: int = 2000,
+    max_iterations: int = 4000,
     accept_unconverged: bool = False,
 ) -> Curve: ...
 

@@ -280,14 +280,14 @@ impl Curve {
 /// - `shape`: None (the scheme's neutral value), one number, or one per point.
 /// - `tangents`: None, or one entry per point: None (free) or a direction (dx, dy) the
 ///   curve must leave the point along.
-/// - `tolerance`, `max_iterations`: the solver's options (relative tolerance 1e-12, 2000
+/// - `tolerance`, `max_iterations`: the solver's options (relative tolerance 1e-12, 4000
 ///   iterations).
 /// - `accept_unconverged`: return the best curve found (`converged` False) instead of
 ///   raising NotConvergedError.
 ///
 /// Raises a subclass of KappaError on bad input (the library's message).
 #[pyfunction]
-#[pyo3(signature = (points, closed, scheme = "kappa", shape = None, tangents = None, *, tolerance = 1e-12, max_iterations = 2000, accept_unconverged = false))]
+#[pyo3(signature = (points, closed, scheme = "kappa", shape = None, tangents = None, *, tolerance = 1e-12, max_iterations = 4000, accept_unconverged = false))]
 #[allow(clippy::too_many_arguments)]
 pub fn solve(
     points: &Bound<'_, PyAny>,
