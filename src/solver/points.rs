@@ -18,7 +18,8 @@
 //! `tests/integer_input.rs`: every failure but the closed four-point loop that visits one
 //! point twice converged after one smoothing pass, in three continuation steps.
 
-use super::{Outcome, Problem, Settings, Workspace, MIN_STEP};
+use super::cascade::MIN_STEP;
+use super::{Outcome, Problem, Settings, Workspace};
 
 /// The smoothing passes tried, in this order: the least smoothing first, as the closest
 /// easy problem.

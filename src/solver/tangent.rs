@@ -48,10 +48,11 @@
 //! each direction from the free curve's tangent to the prescribed one in adaptive steps, so
 //! the solution found is on the free curve's branch.
 
-use super::{
-    dot, Basis, Homotopy, Local, Outcome, Problem, Settings, State, Var, Workspace, CLASSIC_START,
-};
-use crate::basis::SegmentBasis;
+use super::cascade::{Homotopy, CLASSIC_START};
+use super::linear::Var;
+use super::residual::Local;
+use super::{dot, Outcome, Problem, Settings, State, Workspace};
+use crate::basis::{Basis, SegmentBasis};
 
 /// The smallest step of [`Workspace::tangent_continuation`] (a fraction of each turn).
 /// Where the directions cannot be turned further in steps of this size, the tangents have
@@ -306,7 +307,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let steps = Homotopy {
             max_iterations: set.max_iterations,
             min_step: TANGENT_MIN_STEP,
-            step_budget: super::STEP_BUDGET,
+            step_budget: super::cascade::STEP_BUDGET,
         };
         self.follow(prob, &mut moving, blend, budget, steps, total)
     }

@@ -31,10 +31,11 @@
 //! `δ_O = y - X δ_W`, one band back substitution over the curve each. Only where those do
 //! not converge do the global chord and Newton steps take over.
 
-use super::{
-    condense, lambda_valid, scatter, Columns, Condensed, Outcome, Problem, Settings, Split,
-    Workspace,
-};
+use super::condense::{condense, Condensed};
+use super::linear::{scatter, Columns};
+use super::newton::lambda_valid;
+use super::split::Split;
+use super::{Outcome, Problem, Settings, Workspace};
 use crate::linalg::BandLu;
 
 /// Blocks of the window on either side of the moved ones: at the window's edge the solution
@@ -491,7 +492,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     let j = w.block(i);
                     let loc = Self::local(prob, state, j);
                     let (mut scale, mut g2) = (w.wscale[i], 0.0);
-                    let mut ignore = |_: usize, _: super::Var, _: f64| {};
+                    let mut ignore = |_: usize, _: super::linear::Var, _: f64| {};
                     let r = Self::eval_block::<false, true>(
                         prob,
                         j,
@@ -745,7 +746,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             &mut self.trial_res,
             &mut self.trial_check,
             tol,
-            super::RawIo::Write(&mut []),
+            super::residual::RawIo::Write(&mut []),
         );
         self.swap_trial_residuals();
     }
@@ -803,7 +804,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                     &mut self.res[run.clone()],
                     &mut self.check[run.clone()],
                     tol,
-                    super::RawIo::Write(&mut []),
+                    super::residual::RawIo::Write(&mut []),
                 );
                 j = run.end;
             }
@@ -1022,7 +1023,7 @@ mod tests {
                 &mut res,
                 &mut fresh,
                 tol,
-                crate::solver::RawIo::Write(&mut []),
+                crate::solver::residual::RawIo::Write(&mut []),
             );
             for (j, (a, b)) in fresh.iter().zip(&ws.check).enumerate() {
                 let inside = matches!(ws.window.slot[j], Slot::Window(_));

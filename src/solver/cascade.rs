@@ -1,0 +1,217 @@
+//! Cold solves: Newton after a few classic iterations, then continuation in the shape
+//! parameters.
+
+use super::newton::NEWTON_CHORD_MIN_BLOCKS;
+use super::problem::{Outcome, Problem, Settings, State};
+use super::workspace::Workspace;
+use crate::basis::Basis;
+
+/// Iterations of the classic loop used to start Newton from a cold start, one attempt each.
+const CLASSIC_STARTS: [usize; 3] = [3, 1, 12];
+
+/// Classic iterations that start the first solve of a continuation.
+pub(super) const CLASSIC_START: usize = 3;
+
+/// Iteration budget of each direct attempt before the next strategy is tried.
+const ATTEMPT_BUDGET: usize = 30;
+
+/// Shape parameters where the solver converges most reliably (measured on the drawings of
+/// the εκ paper), the starts of the continuation fallbacks, tried in this order.
+const A_HOMES: [f64; 4] = [0.85, 0.75, 0.95, 0.7];
+
+/// The same for trigonometric segments, plus a start below the usual targets: their
+/// solution branches coming from large `a` can fold just above `a = 0.65` (a peak moving
+/// into a segment end), where the branch coming from small `a` (peak at the end) goes on.
+const A_HOMES_TRIG: [f64; 4] = [0.85, 0.75, 0.95, 0.6];
+
+/// Newton budget of one continuation step.
+pub(super) const STEP_BUDGET: usize = 16;
+
+/// Smallest continuation step in the homotopy parameter before an attempt is given up.
+pub(super) const MIN_STEP: f64 = 1e-6;
+
+/// The limits of [`Workspace::follow`]: the iteration budget and the smallest step.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Homotopy {
+    pub(super) max_iterations: usize,
+    pub(super) min_step: f64,
+    /// Newton budget of one step.
+    pub(super) step_budget: usize,
+}
+
+impl<const D: usize, const B: usize> Workspace<D, B> {
+    /// Solve from a cold start: the [`cascade`](Self::cascade) of direct attempts and
+    /// shape continuations, then continuation from smoothed input points
+    /// ([`points`](super::points)) where all of those fail. The total iteration count is reported, and the
+    /// best state found is kept if nothing converges.
+    pub(crate) fn solve_cold(
+        &mut self,
+        prob: &Problem<D>,
+        set: &Settings,
+        scratch: &mut Problem<D>,
+    ) -> Outcome {
+        let out = self.cascade(prob, set, scratch, true);
+        if out.converged || out.iterations >= set.max_iterations {
+            return out;
+        }
+        self.point_continuation(prob, set, scratch, out)
+    }
+
+    /// Newton after a few classic iterations (3, 1, then 12), then continuation in the
+    /// shape parameters from each of [`A_HOMES`]. Every attempt is capped; the total
+    /// iteration count is reported, and the best state found is kept if none converges.
+    pub(super) fn cascade(
+        &mut self,
+        prob: &Problem<D>,
+        set: &Settings,
+        scratch: &mut Problem<D>,
+        shapes: bool,
+    ) -> Outcome {
+        let mut total = 0;
+        let mut best: Option<(Outcome, State<D>)> = None;
+        let keep = |ws: &Self, out: Outcome, best: &mut Option<(Outcome, State<D>)>| {
+            if best.as_ref().map_or(true, |b| out.residual < b.0.residual) {
+                *best = Some((out, ws.state.clone()));
+            }
+        };
+        for (attempt, classic) in CLASSIC_STARTS.into_iter().enumerate() {
+            // One segment between fixed ends (an open curve through three points): its
+            // control point and λ are fixed by the ends, and one classic iteration solves
+            // for `t` and the control point directly; more repeat it.
+            let single = !prob.closed && prob.p.len() == 1;
+            let classic = if single { classic.min(1) } else { classic };
+            let budget = Settings {
+                max_iterations: ATTEMPT_BUDGET.min(set.max_iterations.saturating_sub(total)),
+                ..*set
+            };
+            self.cold_start(prob);
+            let mut out = self.solve(prob, &budget, classic, attempt == 0 && !single);
+            total += out.iterations;
+            out.iterations = total;
+            if out.converged {
+                return out;
+            }
+            keep(self, out, &mut best);
+        }
+        let homes: &[f64] = match prob.basis.first() {
+            _ if !shapes => &[],
+            Some(Basis::Trig(_)) => &A_HOMES_TRIG,
+            _ => &A_HOMES,
+        };
+        for &home in homes {
+            if total >= set.max_iterations {
+                break;
+            }
+            let out = self.continuation(prob, set, scratch, total, home);
+            total = out.iterations;
+            if out.converged {
+                return out;
+            }
+            keep(self, out, &mut best);
+        }
+        match best {
+            Some((mut out, st)) => {
+                self.state = st;
+                out.iterations = total;
+                out
+            }
+            None => Outcome {
+                iterations: total,
+                residual: f64::INFINITY,
+                ..Outcome::default()
+            },
+        }
+    }
+
+    /// Continuation from the shape `home` to the target shapes with adaptive steps.
+    fn continuation(
+        &mut self,
+        prob: &Problem<D>,
+        set: &Settings,
+        scratch: &mut Problem<D>,
+        used: usize,
+        home: f64,
+    ) -> Outcome {
+        let mut total = used;
+        let mut out = Outcome::default();
+        scratch.closed = prob.closed;
+        scratch.ghost = prob.ghost;
+        scratch.tangents.clone_from(&prob.tangents);
+        scratch.p.clone_from(&prob.p);
+        // Only the shapes move along the homotopy.
+        let blend = |scratch: &mut Problem<D>, s: f64| {
+            scratch.basis.clear();
+            scratch.basis.extend(
+                prob.basis
+                    .iter()
+                    .map(|b| b.with_a(b.a() + (1.0 - s) * (home - b.a()))),
+            );
+        };
+        blend(scratch, 0.0);
+        self.cold_start(scratch);
+        // Short curves take no chord steps along the homotopy: each step's small budget
+        // counts them, and the hard curves that get here need every Newton step of it.
+        let budget = |total: usize, cap: usize| Settings {
+            max_iterations: cap.min(set.max_iterations.saturating_sub(total)),
+            newton_chords: set.newton_chords && prob.p.len() >= NEWTON_CHORD_MIN_BLOCKS,
+            ..*set
+        };
+        let first = self.solve(
+            scratch,
+            &budget(total, ATTEMPT_BUDGET),
+            CLASSIC_START,
+            false,
+        );
+        total += first.iterations;
+        if !first.converged {
+            out.iterations = total;
+            out.residual = f64::INFINITY;
+            return out;
+        }
+        // (s = 1 exactly reproduces the shapes.)
+        let steps = Homotopy {
+            max_iterations: set.max_iterations,
+            min_step: MIN_STEP,
+            step_budget: STEP_BUDGET,
+        };
+        self.follow(prob, scratch, blend, budget, steps, total)
+    }
+
+    /// Follows a homotopy from `s = 0`, solved in the current state, to `s = 1`: `blend`
+    /// sets `moving` to the problem at `s`; steps start at 0.25, grow by 1.5 after a
+    /// converged step and halve after a failed one (back to the last solution), until `s`
+    /// reaches 1, the steps shrink below `steps.min_step` or the iterations (counted from
+    /// `total`, each step capped at [`STEP_BUDGET`] through `budget`) reach
+    /// `steps.max_iterations`. A final polish solves `prob` itself.
+    pub(super) fn follow(
+        &mut self,
+        prob: &Problem<D>,
+        moving: &mut Problem<D>,
+        mut blend: impl FnMut(&mut Problem<D>, f64),
+        budget: impl Fn(usize, usize) -> Settings,
+        steps: Homotopy,
+        mut total: usize,
+    ) -> Outcome {
+        let (mut s, mut ds) = (0.0f64, 0.25f64);
+        let mut saved = self.state.clone();
+        while s < 1.0 && total < steps.max_iterations && ds > steps.min_step {
+            let s_try = (s + ds).min(1.0);
+            blend(moving, s_try);
+            let step = self.solve(moving, &budget(total, steps.step_budget), 0, false);
+            total += step.iterations;
+            if step.converged {
+                s = s_try;
+                saved.clone_from(&self.state);
+                ds *= 1.5;
+            } else {
+                self.state.clone_from(&saved);
+                ds *= 0.5;
+            }
+        }
+        let fin = self.solve(prob, &budget(total, steps.step_budget), 0, false);
+        Outcome {
+            iterations: total + fin.iterations,
+            ..fin
+        }
+    }
+}
