@@ -1,19 +1,18 @@
 //! The kappa path-tool engine for the browser.
 //!
-//! [`Session`] wraps a [`kappa::editor::Drawing`] (several contours, one history) and writes everything a page draws or asks
-//! for into flat buffers: `f64` arrays for points, paths, combs and curve samples, UTF-8
-//! bytes for text. The [`ffi`] module exports it as plain C-ABI functions of a
-//! `wasm32-unknown-unknown` module; the page's JavaScript calls them and reads the buffers
-//! straight from the module's memory (`web/www/kappa.js`). Numbers in, numbers out: no
-//! bindings generator and no serialisation on the way.
+//! [`Session`] wraps a [`kappa::editor::Drawing`] (several contours, one history) and writes
+//! everything a page draws or asks for into flat buffers: `f64` arrays for points, paths,
+//! combs and curve samples, UTF-8 bytes for text. The [`bindings`] module exports it to
+//! JavaScript through wasm-bindgen as the class `Editor` (`web/build.sh` makes the npm
+//! package with its TypeScript types); bulk results cross as `Float64Array`s or as plain
+//! objects made in JavaScript from a view of the buffers.
 //!
 //! **Path encoding** ([`encode_path`]): each element is a verb code followed by its points,
 //! `MOVE_TO x y`, `LINE_TO x y`, `QUAD_TO x1 y1 x y`, `CURVE_TO x1 y1 x2 y2 x y`, `CLOSE`.
 
 #![deny(missing_docs)]
-// `#[no_mangle]` counts as unsafe code; it is allowed in `ffi` only, which has no unsafe
-// blocks (results leave through buffers the page reads; a file to open comes in through a
-// buffer the session owns and the page writes).
+// The code wasm-bindgen generates counts as unsafe; it is allowed in `bindings` only, which
+// has no unsafe blocks of its own.
 #![deny(unsafe_code)]
 
 use kappa::editor::{
@@ -23,7 +22,7 @@ use kappa::{Scheme, Shape, SolveOptions, Solver};
 use kurbo::{BezPath, PathEl, Point};
 
 #[allow(unsafe_code)]
-pub mod ffi;
+pub mod bindings;
 
 /// Verb code of [`PathEl::MoveTo`] in an encoded path.
 pub const MOVE_TO: f64 = 0.0;
@@ -81,22 +80,22 @@ pub fn decode_path(data: &[f64]) -> Option<BezPath> {
     Some(out)
 }
 
-/// The scheme of a code: 0 κ, 1 εκ-cubic, 2 εκ-trig.
-pub fn scheme_from_code(code: u32) -> Option<Scheme> {
-    match code {
-        0 => Some(Scheme::Kappa),
-        1 => Some(Scheme::EkCubic),
-        2 => Some(Scheme::EkTrig),
+/// The scheme of a name: `"kappa"`, `"ek-cubic"` or `"ek-trig"` (as in the files).
+pub fn scheme_from_name(name: &str) -> Option<Scheme> {
+    match name {
+        "kappa" => Some(Scheme::Kappa),
+        "ek-cubic" => Some(Scheme::EkCubic),
+        "ek-trig" => Some(Scheme::EkTrig),
         _ => None,
     }
 }
 
-/// The code of a scheme (see [`scheme_from_code`]).
-pub fn scheme_code(scheme: Scheme) -> u32 {
+/// The name of a scheme (see [`scheme_from_name`]).
+pub fn scheme_name(scheme: Scheme) -> &'static str {
     match scheme {
-        Scheme::Kappa => 0,
-        Scheme::EkCubic => 1,
-        Scheme::EkTrig => 2,
+        Scheme::Kappa => "kappa",
+        Scheme::EkCubic => "ek-cubic",
+        Scheme::EkTrig => "ek-trig",
     }
 }
 
@@ -736,11 +735,11 @@ mod tests {
     }
 
     #[test]
-    fn scheme_codes_round_trip() {
+    fn scheme_names_round_trip() {
         for s in [Scheme::Kappa, Scheme::EkCubic, Scheme::EkTrig] {
-            assert_eq!(scheme_from_code(scheme_code(s)), Some(s));
+            assert_eq!(scheme_from_name(scheme_name(s)), Some(s));
         }
-        assert_eq!(scheme_from_code(3), None);
+        assert_eq!(scheme_from_name("ek"), None);
     }
 
     #[test]

@@ -1,8 +1,11 @@
 #!/usr/bin/env bash
 # The path tool in the browser, from a fresh clone: installs Debian's Chromium if it is
 # missing, checks and unit-tests the wasm crate natively (fmt, clippy, cargo test), builds
-# the wasm module, installs the test's npm packages (npm ci), serves the page on a free
-# localhost port, runs the Playwright test in headless Chromium, and stops the server.
+# the wasm module and its npm package (www/pkg/; the first build installs wasm-bindgen-cli
+# into the target directory), installs the test's npm packages (npm ci), checks the
+# package's TypeScript types, serves the page on a free localhost port, runs the Playwright
+# test in headless Chromium, and stops the server. Cargo's target directory is web/target,
+# or CARGO_TARGET_DIR.
 # KAPPA_BLESS=1 re-creates the golden screenshot and the user guide's picture (docs/path-tool.png).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -27,11 +30,14 @@ cargo fmt -- --check
 cargo clippy --locked --all-targets -- -D warnings
 cargo test --locked
 
-step "building the wasm module"
+step "building the wasm module and its package"
 ./build.sh
 
 step "npm ci"
 (cd test && npm ci --no-audit --no-fund --loglevel=error)
+
+step "the package's types"
+(cd test && node --test --test-reporter=spec package.test.mjs)
 
 step "serving the page"
 tmp=$(mktemp -d)

@@ -3,7 +3,8 @@
 // in localStorage and in files; and the `window.kappa` API that the browser test
 // (web/test/) drives.
 
-import { Engine, tracePath, pathElements } from "./kappa.js";
+import init, { Editor } from "./pkg/kappa_web.js";
+import { tracePath, pathElements } from "./path.js";
 import { isGlif, parseGlif, writeGlif } from "./glif.js";
 
 // Comb teeth per segment: 16 on short drawings, fewer on long ones (4 from 300 points on), so
@@ -30,8 +31,8 @@ const stage = $("stage");
 const ctx = canvas.getContext("2d");
 let W = 0, H = 0, dpr = 1;
 
-const engine = await Engine.load(new URL("kappa_web.wasm", import.meta.url));
-engine.reset($("scheme").value);
+await init();
+const engine = new Editor($("scheme").value);
 
 // Screen = doc × scale + (tx, ty), in CSS px of the canvas.
 const view = { scale: 1, tx: 0, ty: 0 };
@@ -774,7 +775,7 @@ function openText(text) {
   if (isGlif(text)) {
     try {
       const scheme = engine.scheme();
-      const parsed = parseGlif(text, scheme, engine.neutralShape(scheme));
+      const parsed = parseGlif(text, scheme, Editor.neutralShape(scheme));
       glyph = parsed.glyph;
       text = JSON.stringify({ contours: parsed.docs });
     } catch (e) {
@@ -978,8 +979,8 @@ window.kappa = {
 
   // Drag latency measured here in the page: `updates` drag updates of point `index` of the
   // active contour, back and forth by up to `amplitude` px like a hand (one gesture). Each
-  // update is the move, the warm re-solve, the path and the curvature comb written to wasm
-  // memory and viewed from JavaScript; with `draw`, also the canvas drawing of path, comb
+  // update is the move, the warm re-solve, the path and the curvature comb encoded and
+  // copied out of the module as Float64Arrays; with `draw`, also the canvas drawing of path, comb
   // and points, rasterized (a pixel read back). Times in ms.
   benchDrag({ index = 30, updates = 1000, amplitude = 1.25, draw: withDraw = false } = {}) {
     if (engine.active() < 0) engine.setActive(0);

@@ -7,7 +7,7 @@
 // Glyphs are y-up, the page is y-down: y is negated on the way in and on the way out (points
 // and tangents alike), so a glyph comes back with the coordinates it had.
 
-import { MOVE_TO, LINE_TO, QUAD_TO, CURVE_TO, CLOSE } from "./kappa.js";
+import { MOVE_TO, LINE_TO, QUAD_TO, CURVE_TO, CLOSE } from "./path.js";
 
 export const KAPPA_LIB_KEY = "org.kappa.contours";
 
