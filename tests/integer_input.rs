@@ -97,11 +97,10 @@ fn random_walks_on_an_integer_grid() {
             closed.push((p, true));
         }
     }
-    // Measured: every open walk converges in every scheme, and every closed one but a
-    // four-click loop that visits one click twice (a hairpin on its repeated click;
-    // docs/curves.md, "Known limits"). Before the continuation from smoothed clicks
-    // (`src/solver/points.rs`), κ converged on 298/300 open walks, εκ-trig on 297/300.
-    // Rates on larger samples are in docs/curves.md; this sample keeps the test short.
+    // Measured: every walk converges in every scheme but one open κ walk and a closed
+    // four-click loop that visits one click twice (both hairpins; the loop's is on its
+    // repeated click; docs/curves.md, "Known limits"). Rates on larger samples
+    // (`examples/walks.rs`) are in docs/curves.md; this sample keeps the test short.
     for (what, cases) in [("grid walks, open", &open), ("grid walks, closed", &closed)] {
         let rates = rates(cases);
         report(what, &rates, [0.995, 0.995, 0.995]);
@@ -161,8 +160,8 @@ fn whole_pixel_samples_of_smooth_curves() {
             ));
         }
     }
-    // Measured: κ 62/84, εκ-cubic 80/84, εκ-trig 81/84: dense samples (16 and more points
+    // Measured: κ 61/84, εκ-cubic 80/84, εκ-trig 79/84: dense samples (16 and more points
     // a turn) of curves whose curvature varies fail for κ, and the lemniscate's crossing
-    // fails at 32 and 48 points (docs/curves.md, "Known limits").
+    // fails at 16 to 48 points (docs/curves.md, "Known limits").
     report("whole-pixel samples", &rates(&cases), [0.65, 0.9, 0.9]);
 }

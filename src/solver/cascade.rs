@@ -41,7 +41,7 @@ pub(super) struct Homotopy {
 
 impl<const D: usize, const B: usize> Workspace<D, B> {
     /// Solve from a cold start: the [`cascade`](Self::cascade) of direct attempts and
-    /// shape continuations, then continuation from smoothed input points
+    /// shape continuations, then continuation from jittered input points
     /// ([`points`](super::points)) where all of those fail. The total iteration count is reported, and the
     /// best state found is kept if nothing converges.
     pub(crate) fn solve_cold(
@@ -57,9 +57,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         self.point_continuation(prob, set, scratch, out)
     }
 
-    /// Newton after a few classic iterations (3, 1, then 12), then continuation in the
-    /// shape parameters from each of [`A_HOMES`]. Every attempt is capped; the total
-    /// iteration count is reported, and the best state found is kept if none converges.
+    /// Newton after a few classic iterations (3, 1, then 12), then, if `shapes`,
+    /// continuation in the shape parameters from each of [`A_HOMES`]. Every attempt is
+    /// capped; the total iteration count is reported, and the best state found is kept if
+    /// none converges.
     pub(super) fn cascade(
         &mut self,
         prob: &Problem<D>,
