@@ -160,7 +160,7 @@ fn whole_pixel_samples_of_smooth_curves() {
             ));
         }
     }
-    // Measured: κ 61/84, εκ-cubic 80/84, εκ-trig 79/84: dense samples (16 and more points
+    // Measured: κ 61/84, εκ-cubic 80/84, εκ-trig 80/84: dense samples (16 and more points
     // a turn) of curves whose curvature varies fail for κ, and the lemniscate's crossing
     // fails at 16 to 48 points (docs/curves.md, "Known limits").
     report("whole-pixel samples", &rates(&cases), [0.65, 0.9, 0.9]);

@@ -3,18 +3,20 @@
 //! Where Newton from the classic start and the continuations in the shape parameters all
 //! fail, the input itself is the hard part: a walk that doubles back on itself (a hairpin
 //! through a whole-pixel click), or a dense run of clicks whose curvature swings from one
-//! point to the next. A jittered copy of the input, each free point `p_i` moved by a
-//! pseudo-random offset of up to [`JITTER`] of the distance `d_i` to its nearer neighbour in
-//! each coordinate, is a nearby problem of the same topology that is usually easy: the
-//! hard inputs are hard at special configurations (a click exactly two steps back, three
-//! clicks on a line) that the jitter breaks. Its solution is then followed back to the
-//! input along the straight path `p(s) = (1 - s) p_jitter + s p`, `s: 0 → 1`, with the
-//! adaptive steps of the shape continuation ([`Workspace::follow`]). The branch followed
-//! can fold back before `s = 1`; where a step does not converge from the last solution,
-//! the blended input is therefore solved from scratch (without the shape continuations),
-//! which can land on another branch, one that reaches the input. Each home gets
-//! [`HOME_BUDGET`] iterations; the next home (another pseudo-random draw, seeded by its
-//! index, so a solve is reproducible) starts where one runs out.
+//! point to the next. A nearby problem of the same topology is usually easy: first the
+//! input smoothed once, each free point moved to `(p_{i-1} + 2 p_i + p_{i+1}) / 4` (open
+//! ends fixed), which suits dense samples of a smooth curve; then jittered copies, each
+//! free point `p_i` moved by a pseudo-random offset of up to [`JITTER`] of the distance to
+//! its nearer neighbour in each coordinate, which break the special configurations that
+//! make grid walks hard (a click exactly two steps back, three clicks on a line). The
+//! home's solution is followed back to the input along the straight path
+//! `p(s) = (1 - s) p_home + s p`, `s: 0 → 1`, with the adaptive steps of the shape
+//! continuation ([`Workspace::follow`]). The branch followed can fold back before
+//! `s = 1`; where a step does not converge from the last solution, the blended input is
+//! therefore solved from scratch (without the shape continuations), which can land on
+//! another branch, one that reaches the input. Each home has a budget
+//! ([`SMOOTHED_BUDGET`], [`HOME_BUDGET`]); the next home (another pseudo-random draw,
+//! seeded by its index, so a solve is reproducible) starts where one runs out.
 //!
 //! The κ- and εκ-curves are not unique, and this path may end on another solution than the
 //! other strategies would: it is tried only after they have all failed, so no curve that
@@ -22,12 +24,12 @@
 //!
 //! Measured on 4 000 integer-grid walks (`examples/walks.rs`, seed 7, the default 4 000
 //! iterations): the κ-curve failed on 11 walks with the earlier homes (the input smoothed
-//! once, then four times, by `(p_{i-1} + 2 p_i + p_{i+1}) / 4`, each followed without a
-//! budget of its own down to steps of 1e-6) and fails on 2 with these. Every one of the 11
-//! converges with a larger cap (3 577–20 018 iterations): the earlier homes spent the
-//! budget on one fold. Jitter of 1/16 or 1/4 of the neighbour distance, per-home budgets
-//! of 200 or 400, the smoothed home first, or a secant predictor along the path each lost
-//! more walks than these settings.
+//! once, then four times, each followed without a budget of its own down to steps of
+//! 1e-6) and fails on 2 with these (as with the jittered homes alone, which lose the
+//! 35-point sine). Every one of the 11 converges with a larger cap (3 577–20 018
+//! iterations): the earlier homes spent the budget on one fold. Jitter of 1/16 or 1/4 of
+//! the neighbour distance, per-home budgets of 200 or 400, or a secant predictor along the
+//! path each lost more walks than these settings.
 
 use super::{Outcome, Problem, Settings, Workspace};
 
@@ -36,8 +38,12 @@ use super::{Outcome, Problem, Settings, Workspace};
 const JITTER: f64 = 0.125;
 /// Homes tried at most; in practice the iteration cap ends the search first.
 const HOMES: u64 = 30;
-/// Iterations for one home: its cold solve and the path back to the input.
+/// Iterations for one jittered home: its cold solve and the path back to the input.
 const HOME_BUDGET: usize = 300;
+/// Iterations for the smoothed home, tried first: dense samples of smooth curves need
+/// more of them (the 35-point sine of docs/curves.md, εκ a = 0.72: 1 621) than the
+/// hairpins of grid walks, which the jittered homes solve.
+const SMOOTHED_BUDGET: usize = 600;
 /// Newton budget of one step along the path: steps are long (a quarter of the way at
 /// first), and on the grid walks 16 (the shape continuation's budget) or 40 iterations
 /// lost curves that 100 (a warm re-solve's budget) found.
@@ -77,16 +83,7 @@ fn jittered<const D: usize>(prob: &Problem<D>, seed: u64) -> Vec<[f64; D]> {
     });
     (0..n)
         .map(|i| {
-            let before = match (i, prob.closed) {
-                (0, true) => prob.p[n - 1],
-                (0, false) => prob.ghost[0],
-                _ => prob.p[i - 1],
-            };
-            let after = match (i + 1 == n, prob.closed) {
-                (true, true) => prob.p[0],
-                (true, false) => prob.ghost[1],
-                _ => prob.p[i + 1],
-            };
+            let (before, after) = neighbours(prob, i);
             let r = JITTER * dist(before, prob.p[i]).min(dist(after, prob.p[i]));
             core::array::from_fn(|k| {
                 let u = uniform(&mut state);
@@ -94,6 +91,35 @@ fn jittered<const D: usize>(prob: &Problem<D>, seed: u64) -> Vec<[f64; D]> {
             })
         })
         .collect()
+}
+
+/// `prob`'s free points after one round of `(p_{i-1} + 2 p_i + p_{i+1}) / 4`: cyclic
+/// neighbours on a closed curve, the fixed ends as neighbours on an open one.
+fn smoothed<const D: usize>(prob: &Problem<D>) -> Vec<[f64; D]> {
+    let n = prob.p.len();
+    (0..n)
+        .map(|i| {
+            let (before, after) = neighbours(prob, i);
+            core::array::from_fn(|k| 0.25 * (before[k] + 2.0 * prob.p[i][k] + after[k]))
+        })
+        .collect()
+}
+
+/// The neighbours of free point `i`: cyclic on a closed curve, the fixed ends next to the
+/// first and last points of an open one.
+fn neighbours<const D: usize>(prob: &Problem<D>, i: usize) -> ([f64; D], [f64; D]) {
+    let n = prob.p.len();
+    let before = match (i, prob.closed) {
+        (0, true) => prob.p[n - 1],
+        (0, false) => prob.ghost[0],
+        _ => prob.p[i - 1],
+    };
+    let after = match (i + 1 == n, prob.closed) {
+        (true, true) => prob.p[0],
+        (true, false) => prob.ghost[1],
+        _ => prob.p[i + 1],
+    };
+    (before, after)
 }
 
 impl<const D: usize, const B: usize> Workspace<D, B> {
@@ -111,13 +137,17 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let mut total = failed.iterations;
         let mut best = (failed, self.state.clone());
         let mut moving = prob.clone();
-        for seed in 1..=HOMES {
+        // Home 0 is the smoothed input, then the jittered copies.
+        for home in 0..=HOMES {
             if total >= set.max_iterations || prob.p.len() < 2 {
                 break;
             }
-            let home = jittered(prob, seed);
+            let (home, budget) = match home {
+                0 => (smoothed(prob), SMOOTHED_BUDGET),
+                seed => (jittered(prob, seed), HOME_BUDGET),
+            };
             moving.p.clone_from(&home);
-            let limit = set.max_iterations.min(total + HOME_BUDGET);
+            let limit = set.max_iterations.min(total + budget);
             let rest = Settings {
                 max_iterations: limit - total,
                 ..*set
@@ -227,5 +257,25 @@ mod tests {
             assert!(moved > 0.9, "{moved}");
         }
         assert_ne!(jittered(&prob, 1), jittered(&prob, 2));
+    }
+
+    #[test]
+    fn smoothing_keeps_open_ends_and_wraps_closed_curves() {
+        let mut prob = Problem::<2> {
+            closed: false,
+            p: vec![[1.0, 1.0], [2.0, 0.0]],
+            ghost: [[0.0, 0.0], [3.0, 0.0]],
+            basis: Vec::new(),
+            tangents: Vec::new(),
+        };
+        // Open: the ends are the neighbours of the first and last free points.
+        assert_eq!(smoothed(&prob), vec![[1.0, 0.5], [2.0, 0.25]]);
+        // Closed: a square's corners move halfway to its centre; the centre stays.
+        prob.closed = true;
+        prob.p = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let s = smoothed(&prob);
+        assert!(s
+            .iter()
+            .all(|q| (q[0] - 0.5).abs() == 0.25 && (q[1] - 0.5).abs() == 0.25));
     }
 }
