@@ -5,7 +5,7 @@
 //! cargo run --release --example walks -- [count] [seed]
 //! ```
 //!
-//! Prints each failure (scheme, walk, residual, points) and the rate per scheme, with the
+//! Prints each failure (scheme, walk, residual, time, points) and the rate per scheme, with the
 //! default solver options. The rates are in docs/curves.md, "Known limits".
 
 use kappa::{Error, Scheme, Shape, Solver};
@@ -64,6 +64,7 @@ fn main() -> Result<(), String> {
         let (mut ok, mut total, mut iterations) = (0, 0, 0usize);
         let start = std::time::Instant::now();
         for (idx, (points, closed)) in cases.iter().enumerate() {
+            let one = std::time::Instant::now();
             match solver.solve(points, *closed, scheme, &Shape::Global(a)) {
                 Ok(s) => {
                     ok += 1;
@@ -76,8 +77,9 @@ fn main() -> Result<(), String> {
                         points.iter().map(|p| format!("{},{}", p.x, p.y)).collect();
                     println!(
                         "failed: {scheme:?} walk {idx}, closed {closed}, {} points, \
-                         residual {residual:.1e}: {}",
+                         residual {residual:.1e}, {:.0} ms: {}",
                         points.len(),
+                        one.elapsed().as_secs_f64() * 1e3,
                         pts.join(" ")
                     );
                 }
