@@ -1,5 +1,6 @@
 //! Convergence rates on random walks on an integer grid: the clicks of a designer who
-//! snaps to whole pixels, 4–40 of them, steps of up to 5 units each way, open and closed.
+//! snaps to whole pixels, 4–40 of them, steps of up to 5 units each way, open and closed
+//! (the generator of `tests/integer_input.rs`, in `tests/common/walks.rs`).
 //!
 //! ```text
 //! cargo run --release --example walks -- [count] [seed]
@@ -9,20 +10,9 @@
 //! default solver options. The rates are in docs/curves.md, "Known limits".
 
 use kappa::{Error, Scheme, Shape, Solver};
-use kurbo::Point;
 
-/// A 64-bit LCG (Knuth's constants), the generator of `tests/common`.
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+#[path = "../tests/common/walks.rs"]
+mod walks;
 
 fn arg<T: std::str::FromStr>(args: &[String], i: usize, default: T) -> Result<T, String> {
     args.get(i).map_or(Ok(default), |s| {
@@ -35,25 +25,7 @@ fn main() -> Result<(), String> {
     let args: Vec<String> = std::env::args().collect();
     let count: usize = arg(&args, 1, 4000)?;
     let seed: u64 = arg(&args, 2, 7)?;
-    let mut rng = Lcg(seed);
-    let mut cases = Vec::new();
-    for k in 0..count {
-        let n = 4 + (rng.next() * 37.0) as usize;
-        let mut p = vec![Point::ZERO];
-        while p.len() < n {
-            let mut step = || ((rng.next() * 11.0) as i32 - 5) as f64;
-            let (dx, dy) = (step(), step());
-            if (dx, dy) != (0.0, 0.0) {
-                let last = p[p.len() - 1];
-                p.push(Point::new(last.x + dx, last.y + dy));
-            }
-        }
-        if k % 2 == 0 {
-            cases.push((p, false));
-        } else if p[0] != p[n - 1] {
-            cases.push((p, true));
-        }
-    }
+    let cases = walks::grid_walks(&mut walks::Lcg(seed), count);
     let schemes = [
         (Scheme::Kappa, 2.0 / 3.0),
         (Scheme::EkCubic, 0.8),

@@ -77,26 +77,9 @@ fn report(what: &str, rates: &[(usize, usize, usize)], floors: [f64; 3]) {
 #[test]
 fn random_walks_on_an_integer_grid() {
     // 4–40 points, steps of up to 5 units each way (never zero), open and closed.
-    let mut rng = common::Lcg(28);
-    let mut open = Vec::new();
-    let mut closed = Vec::new();
-    for k in 0..600 {
-        let n = 4 + (rng.next() * 37.0) as usize;
-        let mut p = vec![Point::ZERO];
-        while p.len() < n {
-            let mut step = || ((rng.next() * 11.0) as i32 - 5) as f64;
-            let (dx, dy) = (step(), step());
-            if (dx, dy) != (0.0, 0.0) {
-                let last = p[p.len() - 1];
-                p.push(Point::new(last.x + dx, last.y + dy));
-            }
-        }
-        if k % 2 == 0 {
-            open.push((p, false));
-        } else if p[0] != p[n - 1] {
-            closed.push((p, true));
-        }
-    }
+    let (open, closed): (Vec<_>, Vec<_>) = common::grid_walks(&mut common::Lcg(28), 600)
+        .into_iter()
+        .partition(|(_, closed)| !closed);
     // Measured: every walk converges in every scheme but one open κ walk and a closed
     // four-click loop that visits one click twice (both hairpins; the loop's is on its
     // repeated click; docs/curves.md, "Known limits"). Rates on larger samples

@@ -4,6 +4,7 @@
 
 mod common;
 
+use common::Lcg;
 use kappa::analysis::{CurvatureAnalysis, SpaceBez};
 use kappa::fit::FitOptions;
 use kappa::space::{
@@ -15,18 +16,6 @@ use proptest::prelude::*;
 
 // ---------------------------------------------------------------------------------------------
 // Inputs
-
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
 
 /// A random star-shaped loop in 3D: sorted angles, radii in [0.35, 1], heights in
 /// [-0.5, 0.5], all times `scale`, shifted by up to 10 × `scale`. Open curves drop the last

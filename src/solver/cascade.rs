@@ -41,7 +41,7 @@ pub(super) struct Homotopy {
 
 impl<const D: usize, const B: usize> Workspace<D, B> {
     /// Solve from a cold start: the [`cascade`](Self::cascade) of direct attempts and
-    /// shape continuations, then continuation from jittered input points
+    /// shape continuations, then continuation from smoothed and jittered input points
     /// ([`points`](super::points)) where all of those fail. The total iteration count is reported, and the
     /// best state found is kept if nothing converges.
     pub(crate) fn solve_cold(

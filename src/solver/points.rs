@@ -72,15 +72,13 @@ fn jittered<const D: usize>(prob: &Problem<D>, seed: u64) -> Vec<[f64; D]> {
         .wrapping_add(12_345);
     let dist = |a: [f64; D], b: [f64; D]| (0..D).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt();
     // A coordinate the whole input shares (planar input in a coordinate plane) keeps it.
-    let fixed: [bool; D] = core::array::from_fn(|k| {
-        let x = prob.p[0][k];
-        let ends = if prob.closed {
-            &prob.ghost[..0]
-        } else {
-            &prob.ghost[..]
-        };
-        prob.p.iter().chain(ends).all(|q| q[k] == x)
-    });
+    let ends = if prob.closed {
+        &prob.ghost[..0]
+    } else {
+        &prob.ghost[..]
+    };
+    let fixed: [bool; D] =
+        core::array::from_fn(|k| prob.p.iter().chain(ends).all(|q| q[k] == prob.p[0][k]));
     (0..n)
         .map(|i| {
             let (before, after) = neighbours(prob, i);
@@ -123,8 +121,9 @@ fn neighbours<const D: usize>(prob: &Problem<D>, i: usize) -> ([f64; D], [f64; D
 }
 
 impl<const D: usize, const B: usize> Workspace<D, B> {
-    /// Continuation from jittered copies of the input (up to [`HOMES`]) after the cascade
-    /// of [`Workspace::cascade`] failed with `failed` (its best state in `self.state`).
+    /// Continuation from the smoothed input, then from jittered copies of it (up to
+    /// [`HOMES`]), after the cascade of [`Workspace::cascade`] failed with `failed` (its
+    /// best state in `self.state`).
     /// Returns the first converged outcome, or the best of all attempts, its state in
     /// `self.state`; iterations counted on from `failed`'s.
     pub(super) fn point_continuation(
@@ -274,6 +273,10 @@ mod tests {
         prob.closed = true;
         prob.p = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
         let s = smoothed(&prob);
+        let centre = s
+            .iter()
+            .fold([0.0; 2], |c, q| [c[0] + q[0] / 4.0, c[1] + q[1] / 4.0]);
+        assert!((centre[0] - 0.5).abs() < 1e-15 && (centre[1] - 0.5).abs() < 1e-15);
         assert!(s
             .iter()
             .all(|q| (q[0] - 0.5).abs() == 0.25 && (q[1] - 0.5).abs() == 0.25));

@@ -4,6 +4,11 @@
 use kappa::{builtin_design, Design};
 use kurbo::{ParamCurve, ParamCurveDeriv, PathSeg, Point};
 
+mod walks;
+// (Re-exported for the tests that use them; not every test does.)
+#[allow(unused_imports)]
+pub use walks::{grid_walks, Lcg};
+
 /// Every curve with at least three points of the nine drawings of the εκ paper:
 /// `(drawing, index, points, closed)`.
 pub fn paper_curves() -> Vec<(String, usize, Vec<Point>, bool, f64)> {
@@ -119,20 +124,6 @@ pub fn dist(a: Point, b: Point) -> f64 {
 /// A segment's start point.
 pub fn start(seg: &PathSeg) -> Point {
     seg.eval(0.0)
-}
-
-/// A deterministic pseudo-random generator (64-bit LCG) for rate tests.
-pub struct Lcg(pub u64);
-
-impl Lcg {
-    /// The next number in [0, 1).
-    pub fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 impl Lcg {
