@@ -37,6 +37,10 @@ pub(super) struct Homotopy {
     pub(super) min_step: f64,
     /// Newton budget of one step.
     pub(super) step_budget: usize,
+    /// The first step in `s`.
+    pub(super) first_step: f64,
+    /// The factor of the step after a converged one.
+    pub(super) growth: f64,
 }
 
 impl<const D: usize, const B: usize> Workspace<D, B> {
@@ -51,6 +55,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         scratch: &mut Problem<D>,
     ) -> Outcome {
         let out = self.cascade(prob, set, scratch, true);
+        if out.converged || out.iterations >= set.max_iterations {
+            return out;
+        }
+        let out = self.nudge_continuation(prob, set, scratch, out);
         if out.converged || out.iterations >= set.max_iterations {
             return out;
         }
@@ -174,16 +182,23 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             max_iterations: set.max_iterations,
             min_step: MIN_STEP,
             step_budget: STEP_BUDGET,
+            first_step: 0.25,
+            growth: 1.5,
         };
         self.follow(prob, scratch, blend, budget, steps, total)
     }
 
     /// Follows a homotopy from `s = 0`, solved in the current state, to `s = 1`: `blend`
-    /// sets `moving` to the problem at `s`; steps start at 0.25, grow by 1.5 after a
-    /// converged step and halve after a failed one (back to the last solution), until `s`
+    /// sets `moving` to the problem at `s`; steps start at `steps.first_step`, grow by
+    /// `steps.growth` after a converged step and halve after a failed one (back to the last
+    /// solution), until `s`
     /// reaches 1, the steps shrink below `steps.min_step` or the iterations (counted from
     /// `total`, each step capped at [`STEP_BUDGET`] through `budget`) reach
-    /// `steps.max_iterations`. A final polish solves `prob` itself.
+    /// `steps.max_iterations`. A final polish solves `prob` itself. Where the homotopy
+    /// moves the input points, each step first moves every control point `c_j` with its
+    /// point `p_j` (as a warm re-solve does): a segment near its collapsed limit has `c_j`
+    /// within its tiny extent of `p_j`, and left behind it would start Newton on the wrong
+    /// side of the point.
     pub(super) fn follow(
         &mut self,
         prob: &Problem<D>,
@@ -193,22 +208,32 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         steps: Homotopy,
         mut total: usize,
     ) -> Outcome {
-        let (mut s, mut ds) = (0.0f64, 0.25f64);
+        let (mut s, mut ds) = (0.0f64, steps.first_step);
         let mut saved = self.state.clone();
+        // The points of the saved state.
+        let mut at = moving.p.clone();
+        let carry = |c: &mut [[f64; D]], to: &[[f64; D]], from: &[[f64; D]]| {
+            for ((c, p), q) in c.iter_mut().zip(to).zip(from) {
+                *c = core::array::from_fn(|k| c[k] + (p[k] - q[k]));
+            }
+        };
         while s < 1.0 && total < steps.max_iterations && ds > steps.min_step {
             let s_try = (s + ds).min(1.0);
             blend(moving, s_try);
+            carry(&mut self.state.c, &moving.p, &at);
             let step = self.solve(moving, &budget(total, steps.step_budget), 0, false);
             total += step.iterations;
             if step.converged {
                 s = s_try;
                 saved.clone_from(&self.state);
-                ds *= 1.5;
+                at.clone_from(&moving.p);
+                ds *= steps.growth;
             } else {
                 self.state.clone_from(&saved);
                 ds *= 0.5;
             }
         }
+        carry(&mut self.state.c, &prob.p, &at);
         let fin = self.solve(prob, &budget(total, steps.step_budget), 0, false);
         Outcome {
             iterations: total + fin.iterations,

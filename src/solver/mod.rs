@@ -42,6 +42,7 @@ mod classic;
 mod condense;
 mod linear;
 mod newton;
+mod nudge;
 mod peak;
 mod points;
 mod problem;

@@ -71,14 +71,7 @@ fn jittered<const D: usize>(prob: &Problem<D>, seed: u64) -> Vec<[f64; D]> {
         .wrapping_mul(0x9E37_79B9_7F4A_7C15)
         .wrapping_add(12_345);
     let dist = |a: [f64; D], b: [f64; D]| (0..D).map(|k| (a[k] - b[k]).powi(2)).sum::<f64>().sqrt();
-    // A coordinate the whole input shares (planar input in a coordinate plane) keeps it.
-    let ends = if prob.closed {
-        &prob.ghost[..0]
-    } else {
-        &prob.ghost[..]
-    };
-    let fixed: [bool; D] =
-        core::array::from_fn(|k| prob.p.iter().chain(ends).all(|q| q[k] == prob.p[0][k]));
+    let fixed = shared_coordinates(prob);
     (0..n)
         .map(|i| {
             let (before, after) = neighbours(prob, i);
@@ -89,6 +82,17 @@ fn jittered<const D: usize>(prob: &Problem<D>, seed: u64) -> Vec<[f64; D]> {
             })
         })
         .collect()
+}
+
+/// The coordinates every input point shares (planar input in a coordinate plane): moves of
+/// the input keep them.
+pub(super) fn shared_coordinates<const D: usize>(prob: &Problem<D>) -> [bool; D] {
+    let ends = if prob.closed {
+        &prob.ghost[..0]
+    } else {
+        &prob.ghost[..]
+    };
+    core::array::from_fn(|k| prob.p.iter().chain(ends).all(|q| q[k] == prob.p[0][k]))
 }
 
 /// `prob`'s free points after one round of `(p_{i-1} + 2 p_i + p_{i+1}) / 4`: cyclic
@@ -105,7 +109,7 @@ fn smoothed<const D: usize>(prob: &Problem<D>) -> Vec<[f64; D]> {
 
 /// The neighbours of free point `i`: cyclic on a closed curve, the fixed ends next to the
 /// first and last points of an open one.
-fn neighbours<const D: usize>(prob: &Problem<D>, i: usize) -> ([f64; D], [f64; D]) {
+pub(super) fn neighbours<const D: usize>(prob: &Problem<D>, i: usize) -> ([f64; D], [f64; D]) {
     let n = prob.p.len();
     let before = match (i, prob.closed) {
         (0, true) => prob.p[n - 1],

@@ -308,6 +308,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             max_iterations: set.max_iterations,
             min_step: TANGENT_MIN_STEP,
             step_budget: super::cascade::STEP_BUDGET,
+            first_step: 0.25,
+            growth: 1.5,
         };
         self.follow(prob, &mut moving, blend, budget, steps, total)
     }

@@ -7,7 +7,7 @@ use kurbo::{ParamCurve, ParamCurveDeriv, PathSeg, Point};
 mod walks;
 // (Re-exported for the tests that use them; not every test does.)
 #[allow(unused_imports)]
-pub use walks::{grid_walks, Lcg};
+pub use walks::{grid_walks, pixel_samples, Lcg};
 
 /// Every curve with at least three points of the nine drawings of the εκ paper:
 /// `(drawing, index, points, closed)`.
