@@ -24,6 +24,53 @@ const A_HOMES: [f64; 4] = [0.85, 0.75, 0.95, 0.7];
 /// into a segment end), where the branch coming from small `a` (peak at the end) goes on.
 const A_HOMES_TRIG: [f64; 4] = [0.85, 0.75, 0.95, 0.6];
 
+/// Iterations of one continuation from a home of [`A_HOMES`]. Uncapped, the first home
+/// could spend the whole budget creeping along a fold in small steps (1 900 iterations on
+/// the 16-point whole-pixel lemniscate), and the fallbacks after it never ran. With 600,
+/// κ solved two more whole-pixel samples than with 900, but not the 30-point sine
+/// `(10i, 50 sin 0.3i)`, which takes 1 814 iterations through the first home.
+const HOME_BUDGET: usize = 900;
+
+/// The last continuation in the shapes, after the homes: from `a = 0.75`, with short
+/// first steps, a Newton budget of 100 a step and no step below 1e-3. Dense whole-pixel
+/// samples fold on the homes' long, cheap steps and converge on these: with the capped
+/// homes it raised κ on the whole-pixel samples of `tests/integer_input.rs` from 62 to 70
+/// of 84 (sines of 16–48 points, lemniscates of 8–24, the 24-point circle of radius 120).
+/// Started from `a = 0.85` it solved one more of those, but three fewer grid walks.
+const FINE: Descent = Descent {
+    home: 0.75,
+    first_step: 0.02,
+    min_step: 1e-3,
+    step_budget: 100,
+    budget: FINE_BUDGET,
+};
+
+/// Iterations of the [`FINE`] continuation.
+const FINE_BUDGET: usize = 2000;
+
+/// One continuation in the shape parameters: its home, its steps and its budget.
+#[derive(Clone, Copy, Debug)]
+struct Descent {
+    home: f64,
+    first_step: f64,
+    min_step: f64,
+    step_budget: usize,
+    budget: usize,
+}
+
+impl Descent {
+    /// A continuation from `home` with the long, cheap steps that suit most input.
+    const fn coarse(home: f64) -> Descent {
+        Descent {
+            home,
+            first_step: 0.25,
+            min_step: MIN_STEP,
+            step_budget: STEP_BUDGET,
+            budget: HOME_BUDGET,
+        }
+    }
+}
+
 /// Newton budget of one continuation step.
 pub(super) const STEP_BUDGET: usize = 16;
 
@@ -107,11 +154,16 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             Some(Basis::Trig(_)) => &A_HOMES_TRIG,
             _ => &A_HOMES,
         };
-        for &home in homes {
+        // Not on trigonometric segments: there it lost 6 of the 3 997 grid walks of seed 11
+        // (the point continuation after it, which solves those, got less budget) and gained
+        // no whole-pixel sample.
+        let trig = matches!(prob.basis.first(), Some(Basis::Trig(_)));
+        let fine = (shapes && !trig).then_some(FINE);
+        for descent in homes.iter().map(|&h| Descent::coarse(h)).chain(fine) {
             if total >= set.max_iterations {
                 break;
             }
-            let out = self.continuation(prob, set, scratch, total, home);
+            let out = self.continuation(prob, set, scratch, total, descent);
             total = out.iterations;
             if out.converged {
                 return out;
@@ -132,15 +184,16 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
     }
 
-    /// Continuation from the shape `home` to the target shapes with adaptive steps.
+    /// Continuation from the shape `descent.home` to the target shapes with adaptive steps.
     fn continuation(
         &mut self,
         prob: &Problem<D>,
         set: &Settings,
         scratch: &mut Problem<D>,
         used: usize,
-        home: f64,
+        descent: Descent,
     ) -> Outcome {
+        let home = descent.home;
         let mut total = used;
         let mut out = Outcome::default();
         scratch.closed = prob.closed;
@@ -179,10 +232,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         // (s = 1 exactly reproduces the shapes.)
         let steps = Homotopy {
-            max_iterations: set.max_iterations,
-            min_step: MIN_STEP,
-            step_budget: STEP_BUDGET,
-            first_step: 0.25,
+            max_iterations: set.max_iterations.min(used.saturating_add(descent.budget)),
+            min_step: descent.min_step,
+            step_budget: descent.step_budget,
+            first_step: descent.first_step,
             growth: 1.5,
         };
         self.follow(prob, scratch, blend, budget, steps, total)

@@ -35,8 +35,11 @@ const NUDGE: f64 = 1e-2;
 /// The last nudge of the path, as a fraction of the tolerance: the polish then starts
 /// within the tolerance of the input.
 const END: f64 = 1e-2;
-/// Iterations for one sign: the nudged input's cold cascade and the path back.
-const BUDGET: usize = 1000;
+/// Iterations for one sign: the nudged input's cold cascade and the path back. The point
+/// continuation runs after this and solves most hairpin walks: with 1 000, 4 fewer of the
+/// 11 993 grid walks of seeds 7, 11 and 3 converged (κ and εκ-trig) than with 700, and 400
+/// lost two whole-pixel lemniscates.
+const BUDGET: usize = 700;
 /// Newton budget of one step along the path (as in the point continuation).
 const STEP_BUDGET: usize = 100;
 /// Smallest step in `s` (a quarter of a decade of nudge, about) before a sign is given up.
