@@ -122,7 +122,8 @@ impl Drafter<'_> {
         }
         if opts.extremum_tangents {
             let held = self.with_extremum_tangents(segs, closed, &anchors, &original, k);
-            if let Some(held) = held {
+            if let Some((more, held)) = held {
+                anchors = more;
                 solved = held;
             }
         }

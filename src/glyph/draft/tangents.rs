@@ -49,17 +49,82 @@ fn original_tangent(segs: &[PathSeg], s: f64) -> Option<Vec2> {
 /// times slower).
 const TANGENT_ITERATIONS: usize = 300;
 
+/// Where the flanking anchors of a tangent that cannot be held go ([`flanked`]): this
+/// fraction of the way from its anchor to each neighbour, in position along the piece.
+/// Measured on the alphabets of EB Garamond and DejaVu Sans (TrueType output, κ): a third
+/// or a half of the way held the same tangents within 1 %, a fifth a few fewer.
+const FLANK: f64 = 1.0 / 3.0;
+
+/// `anchors` with an anchor [`FLANK`] of the way from anchor `j` to each neighbour (on an
+/// open piece, only to the neighbours it has), kind [`AnchorKind::Refined`], and for each
+/// anchor of the new list the index it had before (`None` for the new ones). `None` if
+/// there is no neighbour. `n` is the number of segments of the piece: the positions of a
+/// closed one wrap at `n`, so a flank past the last anchor's position goes to the end of
+/// the list and one before the first anchor's to its start.
+fn flanked(
+    n: usize,
+    closed: bool,
+    anchors: &[Cand],
+    j: usize,
+) -> Option<(Vec<Cand>, Vec<Option<usize>>)> {
+    let m = anchors.len();
+    let n = n as f64;
+    let s = anchors[j].s;
+    let prev = match j {
+        0 if closed => Some(anchors[m - 1].s - n),
+        0 => None,
+        _ => Some(anchors[j - 1].s),
+    };
+    let next = match anchors.get(j + 1) {
+        Some(c) => Some(c.s),
+        None if closed => Some(anchors[0].s + n),
+        None => None,
+    };
+    if prev.is_none() && next.is_none() {
+        return None;
+    }
+    let flank = |b: f64| Cand {
+        s: s + FLANK * (b - s),
+        kind: AnchorKind::Refined,
+    };
+    let (before, after) = (prev.map(flank), next.map(flank));
+    // The new list, each entry with its old index (`None` at a flank).
+    let mut out: Vec<(Cand, Option<usize>)> = Vec::with_capacity(m + 2);
+    for (i, c) in anchors.iter().enumerate() {
+        if i == j {
+            out.extend(before.filter(|f| f.s >= 0.0).map(|f| (f, None)));
+            out.push((*c, Some(i)));
+            out.extend(after.filter(|f| f.s < n).map(|f| (f, None)));
+        } else {
+            out.push((*c, Some(i)));
+        }
+    }
+    // Flanks of a closed piece that wrap round go to the other end of the list.
+    if let Some(f) = after.filter(|f| f.s >= n) {
+        out.insert(0, (Cand { s: f.s - n, ..f }, None));
+    }
+    if let Some(f) = before.filter(|f| f.s < 0.0) {
+        out.push((Cand { s: f.s + n, ..f }, None));
+    }
+    Some(out.into_iter().unzip())
+}
+
 /// How near an axis (radians) the original's tangent at a piece's end is taken to be on it.
 const AXIS_SNAP: f64 = 1.0 * core::f64::consts::PI / 180.0;
 
 impl Drafter<'_> {
     /// The piece solved again with the original's axis held at extremum anchors inside the
     /// piece and, on an open piece, the original's own direction at both ends
-    /// ([`DraftOptions::extremum_tangents`](super::DraftOptions::extremum_tangents)): all
-    /// of them if that converges and stays within the tolerance, otherwise as many as can
-    /// be added one at a time, in order along the piece, with the piece still converging
-    /// and within the tolerance (a tangent far from the free curve's may have no solution:
-    /// the point would leave its segment). `None` where none can be held.
+    /// ([`DraftOptions::extremum_tangents`](super::DraftOptions::extremum_tangents)), with
+    /// its anchors: all of them if that converges and stays within the tolerance, otherwise
+    /// as many as can be added one at a time, in order along the piece, with the piece still
+    /// converging and within the tolerance. A tangent far from the free curve's may have no
+    /// solution (the point would leave its segment), and an open piece's end and the point
+    /// next to it cannot both hold one (one segment); such a tangent is tried once more
+    /// with two anchors flanking its point ([`flanked`]), kept if that holds it. On the
+    /// alphabets of EB Garamond and DejaVu Sans (κ) the flanks took the source's extremum
+    /// nodes kept from 736 to 800 of 1 129 and from 279 to 283 of 288, at 7 % more anchors.
+    /// `None` where none can be held.
     pub(super) fn with_extremum_tangents(
         &mut self,
         segs: &[PathSeg],
@@ -67,7 +132,7 @@ impl Drafter<'_> {
         anchors: &[Cand],
         original: &Target<'_>,
         k: usize,
-    ) -> Option<Solved> {
+    ) -> Option<(Vec<Cand>, Solved)> {
         let m = anchors.len();
         if !closed && m < 3 {
             return None;
@@ -90,22 +155,47 @@ impl Drafter<'_> {
         if count == 0 {
             return None;
         }
-        let mut held = self.solve_holding(segs, closed, anchors, original, k, &wanted);
-        if held.is_some() || count == 1 {
-            return held;
+        if let Some(all) = self.solve_holding(segs, closed, anchors, original, k, &wanted) {
+            return Some((anchors.to_vec(), all));
         }
+        let mut cur = anchors.to_vec();
+        let mut want = wanted;
         let mut kept = vec![None; m];
-        for (i, tan) in wanted.iter().enumerate() {
-            if tan.is_none() {
+        let mut held = None;
+        let mut j = 0;
+        while j < cur.len() {
+            let Some(tan) = want[j] else {
+                j += 1;
+                continue;
+            };
+            kept[j] = Some(tan);
+            if let Some(next) = self.solve_holding(segs, closed, &cur, original, k, &kept) {
+                held = Some(next);
+                j += 1;
                 continue;
             }
-            kept[i] = *tan;
-            match self.solve_holding(segs, closed, anchors, original, k, &kept) {
-                Some(next) => held = Some(next),
-                None => kept[i] = None,
+            kept[j] = None;
+            // Out of reach through these anchors: again with two more flanking it, which
+            // bring the free curve's direction there nearer the original's.
+            if let Some((more, slots)) = flanked(segs.len(), closed, &cur, j) {
+                let pick = |v: &[Option<Vec2>]| -> Vec<Option<Vec2>> {
+                    slots.iter().map(|o| o.and_then(|i| v[i])).collect()
+                };
+                let mut more_kept = pick(&kept);
+                let at = slots.iter().position(|o| *o == Some(j)).unwrap_or(j);
+                more_kept[at] = Some(tan);
+                if let Some(next) = self.solve_holding(segs, closed, &more, original, k, &more_kept)
+                {
+                    held = Some(next);
+                    want = pick(&want);
+                    cur = more;
+                    kept = more_kept;
+                    j = at;
+                }
             }
+            j += 1;
         }
-        held
+        held.map(|s| (cur, s))
     }
 
     /// The piece solved with `tangents` held, if it converges and stays within the
@@ -133,5 +223,51 @@ impl Drafter<'_> {
         solved
             .ok()
             .filter(|s| within(original, s, k, self.options.tolerance))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cands(s: &[f64]) -> Vec<Cand> {
+        s.iter()
+            .map(|&s| Cand {
+                s,
+                kind: AnchorKind::Extremum,
+            })
+            .collect()
+    }
+
+    fn positions(c: &[Cand]) -> Vec<f64> {
+        c.iter().map(|c| c.s).collect()
+    }
+
+    #[test]
+    fn flanks_go_a_third_of_the_way_to_each_neighbour() {
+        let (out, slots) = flanked(4, false, &cands(&[0.0, 1.5, 3.0, 4.0]), 1).unwrap();
+        assert_eq!(positions(&out), [0.0, 1.0, 1.5, 2.0, 3.0, 4.0]);
+        assert_eq!(slots, [Some(0), None, Some(1), None, Some(2), Some(3)]);
+        assert_eq!(out[1].kind, AnchorKind::Refined);
+        // An open piece's end has one neighbour, so one flank.
+        let (out, slots) = flanked(4, false, &cands(&[0.0, 1.5, 3.0]), 0).unwrap();
+        assert_eq!(positions(&out), [0.0, 0.5, 1.5, 3.0]);
+        assert_eq!(slots, [Some(0), None, Some(1), Some(2)]);
+        assert!(flanked(4, false, &cands(&[2.0]), 0).is_none());
+    }
+
+    #[test]
+    fn flanks_of_a_closed_piece_wrap_round() {
+        // The first anchor's neighbour before it is the last, one turn back (at 3 - 6).
+        let (out, slots) = flanked(6, true, &cands(&[0.0, 1.5, 3.0]), 0).unwrap();
+        assert_eq!(positions(&out), [0.0, 0.5, 1.5, 3.0, 5.0]);
+        assert_eq!(slots, [Some(0), None, Some(1), Some(2), None]);
+        // The last one's neighbour after it is the first, one turn on (at 0.9 + 6).
+        let (out, slots) = flanked(6, true, &cands(&[0.9, 3.0, 5.7]), 2).unwrap();
+        let s = positions(&out);
+        assert!((s[0] - 0.1).abs() < 1e-12, "{s:?}");
+        assert_eq!(&s[1..4], [0.9, 3.0, 5.7 - 0.9]);
+        assert_eq!(s[4], 5.7);
+        assert_eq!(slots, [None, Some(0), Some(1), None, Some(2)]);
     }
 }
