@@ -451,8 +451,8 @@ test("a clicked wave and a symmetric S are drawn in every scheme", async () => {
 });
 
 test("a solve that does not converge shows its best curve, flagged, and undo brings it back", async () => {
-  // The κ-curve of a dense sine (40 samples) does not converge.
-  const pts = Array.from({ length: 40 }, (_, i) => [20 + 21 * i, 300 + 100 * Math.sin(0.3 * i)]);
+  // The κ-curve of a dense sine (45 samples) does not converge (40 samples now do).
+  const pts = Array.from({ length: 45 }, (_, i) => [20 + 19 * i, 300 + 100 * Math.sin(0.3 * i)]);
   const r = await page.evaluate((pts) => {
     const k = window.kappa;
     k.reset("kappa");
@@ -467,7 +467,7 @@ test("a solve that does not converge shows its best curve, flagged, and undo bri
   // An edit that solves (εκ-cubic), then undo into the failed state: curve and message return.
   const back = await page.evaluate(() => {
     const k = window.kappa;
-    for (let i = 0; i < 40; i++) k.setShape(i, 0.8);
+    for (let i = 0; i < 45; i++) k.setShape(i, 0.8);
     k.setScheme("ek-cubic");
     const solved = k.lastError();
     k.undo();
