@@ -88,7 +88,10 @@ use solve::{anchors_of, spline_path};
 /// 7. **A piece that will not solve** does not abort the glyph: it is cut in two at its
 ///    middle joint (a closed piece into two open halves) and each part drafted, to
 ///    [`SPLIT_DEPTH`] levels; a part that still fails keeps the original's segments,
-///    flagged ([`Piece::fallback`], [`DraftedGlyph::fallback_count`]).
+///    flagged ([`Piece::fallback`], [`DraftedGlyph::fallback_count`]). **A piece that
+///    solves but strays** beyond the tolerance is cut the same way, and its parts replace
+///    it only when none of them is a fallback and their worst Hausdorff distance is below
+///    the whole piece's.
 ///
 /// The reported **Hausdorff distance** is taken piece by piece, both ways, on
 /// [`DraftOptions::samples`] samples per segment with exact nearest points: the original

@@ -1,5 +1,5 @@
 //! One piece drafted: anchors, refinement and the optional passes, cut in parts where it
-//! will not solve ([`draft`](super::draft), steps 2 to 7).
+//! will not solve or strays ([`draft`](super::draft), steps 2 to 7).
 
 use kurbo::{BezPath, ParamCurve, PathSeg};
 
@@ -8,7 +8,7 @@ use super::solve::anchors_of;
 use super::{Anchor, AnchorKind, Cand, Drafter, Piece, Solved};
 use crate::{Error, Spline};
 
-/// How many times a piece that will not solve is cut in two ([`draft`](super::draft),
+/// How many times a piece that will not solve, or strays, is cut in two ([`draft`](super::draft),
 /// step 7).
 pub const SPLIT_DEPTH: usize = 3;
 
@@ -68,21 +68,39 @@ fn finish(anchors: &[Cand], solved: Solved, closed: bool, hausdorff: f64, tolera
 impl Drafter<'_> {
     /// [`Drafter::piece`], or where it fails the piece cut in two and each part drafted
     /// the same way, `depth` cuts deep so far; a part that still fails keeps the original
-    /// ([`draft`](super::draft), step 7).
+    /// ([`draft`](super::draft), step 7). Where it solves but strays beyond the tolerance,
+    /// the parts are drafted too and replace it only if none is a fallback and their worst
+    /// Hausdorff distance is below the whole's.
     pub(super) fn piece_or_parts(
         &mut self,
         segs: &[PathSeg],
         closed: bool,
         depth: usize,
     ) -> Vec<Piece> {
-        if let Ok(piece) = self.piece(segs, closed) {
-            return vec![piece];
+        let whole = self.piece(segs, closed).ok();
+        if whole.as_ref().is_some_and(|p| p.within_tolerance) {
+            return whole.into_iter().collect();
         }
         if depth < SPLIT_DEPTH && segs.len() >= 2 {
             let h = segs.len() / 2;
             let mut out = self.piece_or_parts(&segs[..h], false, depth + 1);
             out.extend(self.piece_or_parts(&segs[h..], false, depth + 1));
-            return out;
+            let Some(whole) = whole else {
+                return out;
+            };
+            // A piece that solves but strays: its parts replace it where they are drafted
+            // (none keeps the original) and come nearer the original.
+            let worst = out.iter().map(|p| p.hausdorff.unwrap_or(f64::INFINITY));
+            let worst = worst.fold(0.0, f64::max);
+            let better = worst < whole.hausdorff.unwrap_or(f64::INFINITY);
+            return if better && !out.iter().any(|p| p.fallback) {
+                out
+            } else {
+                vec![whole]
+            };
+        }
+        if let Some(whole) = whole {
+            return vec![whole];
         }
         // Only a piece of no length has no fallback: it has nothing to draw either.
         fallback_piece(segs, closed).into_iter().collect()
