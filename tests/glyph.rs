@@ -23,6 +23,11 @@ fn font_data() -> Vec<u8> {
     std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fonts/DejaVuSans.ttf")).unwrap()
 }
 
+fn garamond_data() -> Vec<u8> {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR"));
+    std::fs::read(dir.join("tests/fonts/EBGaramond12-Regular-subset.otf")).unwrap()
+}
+
 fn options(scheme: Scheme, shape: DraftShape) -> DraftOptions {
     DraftOptions::for_units_per_em(2048.0).with_scheme(scheme, shape)
 }
@@ -726,10 +731,7 @@ fn golden_glyph_sample_figure() {
 /// drafts.
 #[test]
 fn golden_glyph_garamond_figure() {
-    let data = std::fs::read(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fonts/EBGaramond12-Regular-subset.otf"),
-    )
-    .unwrap();
+    let data = garamond_data();
     let font = FontOutlines::parse(&data).unwrap();
     let kappa = DraftOptions::for_units_per_em(font.units_per_em());
     let ek = kappa.clone().with_scheme(Scheme::EkCubic, DraftShape::Auto);
@@ -746,30 +748,26 @@ fn golden_glyph_garamond_figure() {
 /// strayed by 9.8 units at the default 4 (0.004 em).
 #[test]
 fn glyph_straying_piece_is_cut_in_parts() {
-    let data = std::fs::read(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fonts/EBGaramond12-Regular-subset.otf"),
-    )
-    .unwrap();
+    let data = garamond_data();
     let font = FontOutlines::parse(&data).unwrap();
-    for (ch, tolerance) in [('N', 4.0)] {
-        let g = font.glyph(ch).unwrap();
-        let opts = DraftOptions {
-            tolerance,
-            ..DraftOptions::for_units_per_em(font.units_per_em())
-        };
-        let d = draft(&g.path, &opts).unwrap();
-        assert!(d.within_tolerance(), "{ch}: {:?}", d.hausdorff);
-        assert_eq!(d.fallback_count(), 0, "{ch}");
-        // Measured independently on 4x the samples, up to the sampling step.
-        let whole = hausdorff(&g.path, &d.path, 64);
-        assert!(whole <= tolerance + 0.5, "{ch}: {whole}");
-        // The parts join end to end: the drafted contours stay closed and G0.
-        for c in &d.contours {
-            for (p, q) in c.pieces.iter().zip(c.pieces.iter().cycle().skip(1)) {
-                let (end, start) = (p.path.segments().last(), q.path.segments().next());
-                let gap = (end.unwrap().end() - start.unwrap().start()).hypot();
-                assert!(gap < 1e-9, "{ch}: pieces {gap} apart");
-            }
+    let (ch, tolerance) = ('N', 4.0);
+    let g = font.glyph(ch).unwrap();
+    let opts = DraftOptions {
+        tolerance,
+        ..DraftOptions::for_units_per_em(font.units_per_em())
+    };
+    let d = draft(&g.path, &opts).unwrap();
+    assert!(d.within_tolerance(), "{ch}: {:?}", d.hausdorff);
+    assert_eq!(d.fallback_count(), 0, "{ch}");
+    // Measured independently on 4x the samples, up to the sampling step.
+    let whole = hausdorff(&g.path, &d.path, 64);
+    assert!(whole <= tolerance + 0.5, "{ch}: {whole}");
+    // The parts join end to end: the drafted contours stay closed and G0.
+    for c in &d.contours {
+        for (p, q) in c.pieces.iter().zip(c.pieces.iter().cycle().skip(1)) {
+            let (end, start) = (p.path.segments().last(), q.path.segments().next());
+            let gap = (end.unwrap().end() - start.unwrap().start()).hypot();
+            assert!(gap < 1e-9, "{ch}: pieces {gap} apart");
         }
     }
 }
