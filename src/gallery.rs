@@ -2,7 +2,7 @@
 //! input points and curvature comb; several schemes side by side (the εκ paper's Figs. 6, 8
 //! and 9 show κ-curves beside εκ-curves with `a = 0.75, 0.85, 0.95`).
 
-use kurbo::{Point, Rect};
+use kurbo::{BezPath, Point, Rect, Shape as _};
 
 use crate::render::{hstack, Pixmap, RenderError, Scene};
 use crate::{Design, Error, Scheme, Shape, Solver, Spline};
@@ -114,8 +114,9 @@ pub fn design_scene(
 
 /// A `width × height` scene of solved curves with their input points: curvature combs of the
 /// exact curves, the curves (εκ-trig ones fitted within 1e-4 of their size) and the points,
-/// in a view of the input points with a margin (y down). `combs` are the tooth lengths per
-/// unit |κ|, one per curve (`None`: from these curves, see [`comb_scales`]). This is how
+/// in a view of the input points with a margin (y down), widened where a comb reaches past
+/// it so that every tooth stays inside the image. `combs` are the tooth lengths per unit
+/// |κ|, one per curve (`None`: from these curves, see [`comb_scales`]). This is how
 /// [`design_scene`] draws, for curves solved elsewhere (with other options or per-point
 /// shapes).
 pub fn curves_scene(
@@ -132,27 +133,69 @@ pub fn curves_scene(
             &own[..]
         }
     };
-    let mut scene = Scene::new().with_size(width, height);
-    if let Some(view) = view_box(curves.iter().flat_map(|(_, pts)| pts.iter().copied())) {
-        scene = scene.with_view_box(view);
+    let drawn = Drawn::new(curves, scales);
+    drawn.scene(drawn.view(), width, height)
+}
+
+/// The curves of one panel, with their combs, ready to draw in a view.
+struct Drawn<'a> {
+    curves: &'a [(Spline, Vec<Point>)],
+    combs: Vec<BezPath>,
+}
+
+impl<'a> Drawn<'a> {
+    fn new(curves: &'a [(Spline, Vec<Point>)], scales: &[f64]) -> Drawn<'a> {
+        let combs = curves
+            .iter()
+            .zip(scales)
+            .map(|((spline, _), &scale)| spline.curvature_comb(scale, COMB_SAMPLES))
+            .collect();
+        Drawn { curves, combs }
     }
-    for ((spline, _), &scale) in curves.iter().zip(scales) {
-        scene = scene.comb(&spline.curvature_comb(scale, COMB_SAMPLES));
+
+    /// The input points' view ([`view_box`]) joined with the combs' bounds.
+    fn view(&self) -> Option<Rect> {
+        let points = view_box(self.curves.iter().flat_map(|(_, pts)| pts.iter().copied()))?;
+        Some(
+            self.combs
+                .iter()
+                .filter(|c| c.is_finite() && c.segments().next().is_some())
+                .fold(points, |view, comb| view.union(comb.bounding_box())),
+        )
     }
-    for (spline, pts) in curves {
-        scene = scene.curve(&spline.to_bezpath()).input_points(pts);
+
+    fn scene(&self, view: Option<Rect>, width: u32, height: u32) -> Scene {
+        let mut scene = Scene::new().with_size(width, height);
+        if let Some(view) = view {
+            scene = scene.with_view_box(view);
+        }
+        for comb in &self.combs {
+            scene = scene.comb(comb);
+        }
+        for (spline, pts) in self.curves {
+            scene = scene.curve(&spline.to_bezpath()).input_points(pts);
+        }
+        scene
     }
-    scene
 }
 
 /// The view of a drawing: its points' bounding box with a margin of [`VIEW_MARGIN`] × its
-/// larger side, the same for every scheme so that panels line up.
+/// larger side.
 fn view_box(points: impl Iterator<Item = Point>) -> Option<Rect> {
     let bounds = points.fold(None, |acc: Option<Rect>, p| {
         Some(acc.map_or(Rect::from_points(p, p), |r| r.union_pt(p)))
     })?;
     let pad = VIEW_MARGIN * bounds.width().max(bounds.height());
     Some(bounds.inflate(pad, pad))
+}
+
+/// The title of a variant's panel: `κ-curve`, `εκ-cubic, a = 0.75` or `εκ-trig, a = 0.6`.
+pub fn variant_title(scheme: Scheme, a: f64) -> String {
+    match scheme {
+        Scheme::Kappa => "κ-curve".to_owned(),
+        Scheme::EkCubic => format!("εκ-cubic, a = {a}"),
+        Scheme::EkTrig => format!("εκ-trig, a = {a}"),
+    }
 }
 
 /// The panels of the paper-style figure as scenes: the drawing as a κ-curve and as εκ-curves
@@ -164,23 +207,34 @@ pub fn paper_scenes(design: &Design, panel: u32) -> Result<Vec<Scene>, GalleryEr
 
 /// The panels of a figure of `variants` (scheme and shape) as scenes, each `panel × panel`
 /// pixels, with the comb scales of the first variant in every panel so that their curvature
-/// can be compared. [`PAPER_VARIANTS`] and [`TRIG_VARIANTS`] are the paper's.
+/// can be compared. Each panel is titled with its variant ([`variant_title`]), and all are
+/// drawn in one view that holds every panel's points and combs, so they line up and no comb
+/// leaves its panel. [`PAPER_VARIANTS`] and [`TRIG_VARIANTS`] are the paper's.
 pub fn variant_scenes(
     design: &Design,
     variants: &[(Scheme, f64)],
     panel: u32,
 ) -> Result<Vec<Scene>, GalleryError> {
-    let mut scales = Vec::new();
-    let mut scenes = Vec::with_capacity(variants.len());
-    for &(scheme, a) in variants {
-        // The first variant's comb scales are used in every panel.
-        let curves = solve_design(design, scheme, a)?;
-        if scales.is_empty() {
-            scales = comb_scales(&curves);
-        }
-        scenes.push(curves_scene(&curves, panel, panel, Some(&scales)));
-    }
-    Ok(scenes)
+    let solved = variants
+        .iter()
+        .map(|&(scheme, a)| solve_design(design, scheme, a))
+        .collect::<Result<Vec<_>, _>>()?;
+    // The first variant's comb scales are used in every panel.
+    let scales = solved.first().map(|c| comb_scales(c)).unwrap_or_default();
+    let drawn: Vec<Drawn> = solved.iter().map(|c| Drawn::new(c, &scales)).collect();
+    // One view for every panel, so that they line up, wide enough for every comb.
+    let view = drawn
+        .iter()
+        .filter_map(Drawn::view)
+        .reduce(|a, b| a.union(b));
+    Ok(drawn
+        .iter()
+        .zip(variants)
+        .map(|(d, &(scheme, a))| {
+            d.scene(view, panel, panel)
+                .with_title(&variant_title(scheme, a))
+        })
+        .collect())
 }
 
 /// The paper-style figure: the [`paper_scenes`] rendered side by side.

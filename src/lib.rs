@@ -125,6 +125,8 @@ pub mod glyph;
 pub mod input;
 pub mod intrinsic;
 mod linalg;
+#[cfg(any(feature = "font", feature = "render"))]
+mod outline;
 mod parallel;
 mod point3;
 #[cfg(feature = "render")]

@@ -7,7 +7,9 @@ use kappa::render::golden::{
     check_golden, check_golden_with, compare, diff_image, diff_image_with, load_png, GoldenError,
     Tolerance,
 };
-use kappa::render::{hstack, Color, Pixmap, PointStyle, RenderError, Scene, Style, MAX_PIXELS};
+use kappa::render::{
+    hstack, Color, Pixmap, PointStyle, RenderError, Scene, Style, TextAlign, MAX_PIXELS,
+};
 use kurbo::{Affine, BezPath, Point, Rect};
 
 /// Handle length of a 4-cubic circle: 4/3 (√2 − 1).
@@ -226,6 +228,70 @@ fn scene_view_transform_fits_and_centres() {
     let up = scene.with_y_down(false).view_transform().unwrap();
     assert_eq!(up * Point::new(0.0, 0.0), Point::new(10.0, 170.0));
     assert_eq!(up * Point::new(10.0, 5.0), Point::new(290.0, 30.0));
+}
+
+#[test]
+fn scene_title_takes_a_band_above_the_drawing() {
+    let square = [Point::new(0.0, 0.0), Point::new(10.0, 10.0)];
+    let scene = Scene::new()
+        .with_size(200, 200)
+        .with_margin(10.0)
+        .polygon(&square, false, Style::CURVE)
+        .with_title("κ-curve, a = 0.75");
+    let t = scene.view_transform().unwrap();
+    let band = Scene::TITLE_BAND;
+    // 10 x 10 into 180 x (180 − band): the height decides, centred below the band.
+    let side = 180.0 - band;
+    let top = t * Point::new(0.0, 0.0);
+    assert!((top.y - (10.0 + band)).abs() < 1e-9, "{top:?}");
+    assert!(((t * Point::new(10.0, 10.0)).y - 190.0).abs() < 1e-9);
+    assert!(((t * Point::new(10.0, 0.0)).x - top.x - side).abs() < 1e-9);
+    // The title's ink is in the band, centred.
+    let image = scene.render().unwrap();
+    let (mut dark_in_band, mut sum_x) = (0, 0.0);
+    for y in 0..band as u32 {
+        for x in 0..200 {
+            if get(&image, x, y)[0] < 128 {
+                dark_in_band += 1;
+                sum_x += f64::from(x);
+            }
+        }
+    }
+    // Between the title and the drawing (which starts at 10 + band, its stroke 1 px above)
+    // the image is white.
+    for y in band as u32 + 1..band as u32 + 8 {
+        for x in 0..200 {
+            assert_eq!(get(&image, x, y), [255; 4], "({x}, {y})");
+        }
+    }
+    assert!(dark_in_band > 50, "{dark_in_band} dark pixels in the band");
+    let mean_x = sum_x / f64::from(dark_in_band);
+    assert!((mean_x - 100.0).abs() < 15.0, "ink centred at x = {mean_x}");
+    // The SVG holds outlines, not text.
+    let svg = scene.to_svg().unwrap();
+    assert!(!svg.contains("<text"));
+}
+
+#[test]
+fn scene_labels_are_in_pixels_and_do_not_move_the_view() {
+    let dots = [Point::new(0.0, 0.0), Point::new(1.0, 1.0)];
+    let scene = Scene::new()
+        .with_size(100, 100)
+        .points(&dots, PointStyle::INPUT);
+    let labelled = scene.clone().label(
+        "808",
+        Point::new(50.0, 95.0),
+        20.0,
+        TextAlign::Middle,
+        Color::BLUE,
+    );
+    assert_eq!(
+        scene.view_transform().unwrap(),
+        labelled.view_transform().unwrap()
+    );
+    let image = labelled.render().unwrap();
+    let (x, y) = centroid(&image, Color::BLUE).unwrap();
+    assert!((x - 50.0).abs() < 2.0 && y > 80.0 && y < 92.0, "({x}, {y})");
 }
 
 #[test]

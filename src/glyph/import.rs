@@ -6,8 +6,9 @@
 //! from `f32` to `f64` (exact). No scaling, no flip: to draw in y-down pixel coordinates apply
 //! `Affine::new([s, 0, 0, -s, x0, y0])` (see [`crate::glyph`]).
 
-use kurbo::{BezPath, PathEl, Point};
+use kurbo::BezPath;
 
+use crate::outline::OutlinePath;
 use crate::Error;
 
 /// A font whose glyph outlines can be read, borrowing the font file's bytes.
@@ -122,7 +123,7 @@ impl<'a> FontOutlines<'a> {
     ///
     /// [`Error::Font`] for a malformed outline.
     pub fn outline(&self, id: u16) -> Result<BezPath, Error> {
-        let mut builder = Builder(BezPath::new());
+        let mut builder = OutlinePath(BezPath::new());
         let bbox = self
             .face
             .outline_glyph(ttf_parser::GlyphId(id), &mut builder);
@@ -145,7 +146,7 @@ impl<'a> FontOutlines<'a> {
             .face
             .glyph_index(ch)
             .ok_or(Error::MissingGlyph { ch })?;
-        let mut builder = Builder(BezPath::new());
+        let mut builder = OutlinePath(BezPath::new());
         // `None` means "no outline" (empty glyph) or a malformed one; a glyph with a
         // bounding box but nothing drawn would be the latter.
         let bbox = self.face.outline_glyph(id, &mut builder);
@@ -177,67 +178,4 @@ fn check_collection_header(data: &[u8]) -> Result<(), Error> {
         }
     }
     Ok(())
-}
-
-/// Collects ttf-parser's outline calls into a kurbo path.
-///
-/// A malformed font can draw before its first `move_to` or after a `close`; kurbo's path
-/// asserts against that in debug builds (found by the `font` fuzz target), so such a subpath
-/// starts at the current point, and a `close` without a subpath is dropped.
-struct Builder(BezPath);
-
-impl Builder {
-    /// Starts a subpath at the current point if none is open.
-    fn ensure_subpath(&mut self) {
-        let open = matches!(
-            self.0.elements().last(),
-            Some(el) if !matches!(el, PathEl::ClosePath)
-        );
-        if !open {
-            let at = match self.0.elements() {
-                [] => Point::ZERO,
-                els => els
-                    .iter()
-                    .rev()
-                    .find_map(|el| match el {
-                        PathEl::MoveTo(p) => Some(*p),
-                        _ => None,
-                    })
-                    .unwrap_or(Point::ZERO),
-            };
-            self.0.move_to(at);
-        }
-    }
-}
-
-impl ttf_parser::OutlineBuilder for Builder {
-    fn move_to(&mut self, x: f32, y: f32) {
-        self.0.move_to((f64::from(x), f64::from(y)));
-    }
-
-    fn line_to(&mut self, x: f32, y: f32) {
-        self.ensure_subpath();
-        self.0.line_to((f64::from(x), f64::from(y)));
-    }
-
-    fn quad_to(&mut self, x1: f32, y1: f32, x: f32, y: f32) {
-        self.ensure_subpath();
-        self.0
-            .quad_to((f64::from(x1), f64::from(y1)), (f64::from(x), f64::from(y)));
-    }
-
-    fn curve_to(&mut self, x1: f32, y1: f32, x2: f32, y2: f32, x: f32, y: f32) {
-        self.ensure_subpath();
-        self.0.curve_to(
-            (f64::from(x1), f64::from(y1)),
-            (f64::from(x2), f64::from(y2)),
-            (f64::from(x), f64::from(y)),
-        );
-    }
-
-    fn close(&mut self) {
-        if matches!(self.0.elements().last(), Some(el) if !matches!(el, PathEl::ClosePath)) {
-            self.0.close_path();
-        }
-    }
 }

@@ -157,6 +157,42 @@ pub fn viable_scene(
     scene
 }
 
+/// Size in pixels per em of the axis labels of [`viable_figure`].
+const AXIS_LABEL_SIZE: f64 = 11.0;
+
+/// Labels the axes of a [`viable_scene`] (titled or not): the range ends of `κ_s` under the
+/// frame's bottom corners and of `κ_e` left of its left corners, and the two axis names.
+/// The scene's view must be the unit square it draws the region in; it keeps the default
+/// margin, which leaves room for one line of labels on each side.
+pub fn with_viable_axes(scene: Scene, region: &super::ViableRegion) -> Result<Scene, RenderError> {
+    use crate::render::TextAlign;
+    let to_pixels = scene.view_transform()?;
+    let (ks, ke) = (&region.k_start, &region.k_end);
+    let (Some(&s0), Some(&s1), Some(&e0), Some(&e1)) =
+        (ks.first(), ks.last(), ke.first(), ke.last())
+    else {
+        return Ok(scene);
+    };
+    let size = AXIS_LABEL_SIZE;
+    let below = |u: f64| to_pixels * Point::new(u, 0.0) + kurbo::Vec2::new(0.0, size + 2.0);
+    let left = |v: f64| to_pixels * Point::new(0.0, v) + kurbo::Vec2::new(-3.0, 0.35 * size);
+    let label = |scene: Scene, text: &str, at: Point, align: TextAlign| {
+        scene.label(text, at, size, align, Color::BLACK)
+    };
+    let scene = label(scene, &number(s0), below(0.0), TextAlign::Start);
+    let scene = label(scene, "κs", below(0.5), TextAlign::Middle);
+    let scene = label(scene, &number(s1), below(1.0), TextAlign::End);
+    let scene = label(scene, &number(e0), left(0.0), TextAlign::End);
+    let scene = label(scene, "κe", left(0.5), TextAlign::End);
+    Ok(label(scene, &number(e1), left(1.0), TextAlign::End))
+}
+
+/// A range end as a label: at most three decimals, with a real minus sign.
+fn number(x: f64) -> String {
+    let rounded = (x * 1000.0).round() / 1000.0 + 0.0;
+    format!("{rounded}").replace('-', "−")
+}
+
 /// Errors of figure making.
 #[derive(Debug, thiserror::Error)]
 pub enum FigureError {
@@ -218,9 +254,10 @@ pub fn variety_figure(panel: u32) -> Result<Pixmap, FigureError> {
     let data = variety_data();
     let points = [data.start.point, data.end.point];
     let mut panels = Vec::new();
-    for (_, profile) in variety_profiles() {
+    for (name, profile) in variety_profiles() {
         let seg = data.solve(&profile)?;
-        panels.push(scene(core::slice::from_ref(&seg), &points, panel, panel)?.render()?);
+        let scene = scene(core::slice::from_ref(&seg), &points, panel, panel)?.with_title(name);
+        panels.push(scene.render()?);
     }
     Ok(hstack(&panels, FIGURE_GAP)?)
 }
@@ -257,7 +294,9 @@ pub fn viable_figure(panel: u32, samples: usize) -> Result<Pixmap, FigureError> 
     let mut panels = Vec::new();
     for degree in VIABLE_DEGREES {
         let region = viable_region(&data, degree, VIABLE_K_START, VIABLE_K_END, samples)?;
-        panels.push(viable_scene(&region, Some(ends), panel).render()?);
+        let scene =
+            viable_scene(&region, Some(ends), panel).with_title(&format!("degree {degree}"));
+        panels.push(with_viable_axes(scene, &region)?.render()?);
     }
     Ok(hstack(&panels, FIGURE_GAP)?)
 }

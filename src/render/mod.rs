@@ -62,10 +62,12 @@
 
 mod error;
 pub mod golden;
+mod label;
 mod scene;
 mod style;
 
 pub use error::RenderError;
+pub use label::TextAlign;
 pub use resvg::tiny_skia::Pixmap;
 pub use scene::Scene;
 pub use style::{Color, PointStyle, Style};

@@ -6,6 +6,7 @@ use kurbo::{Affine, BezPath, ParamCurveExtrema, PathEl, Point, Rect, Vec2};
 use resvg::tiny_skia::Pixmap;
 use resvg::usvg;
 
+use super::label::{text_outline, TextAlign};
 use super::{pixmap_new, Color, PointStyle, RenderError, Style, MAX_PIXELS};
 
 /// Coordinates and lengths in the SVG are rounded to `1 / SVG_PRECISION` px.
@@ -30,6 +31,8 @@ enum Layer {
         points: Vec<Point>,
         style: PointStyle,
     },
+    /// Text outlines, already in pixel coordinates (not moved by the view).
+    Label { path: BezPath, color: Color },
 }
 
 impl Layer {
@@ -37,6 +40,7 @@ impl Layer {
         match self {
             Layer::Path { kind, .. } => kind,
             Layer::Points { .. } => "points",
+            Layer::Label { .. } => "label",
         }
     }
 
@@ -52,6 +56,8 @@ impl Layer {
                 .iter()
                 .map(|&p| Rect::from_points(p, p))
                 .reduce(|a, b| a.union(b)),
+            // Labels sit in the image's pixels, not in the drawing.
+            Layer::Label { .. } => None,
         }
     }
 
@@ -62,6 +68,7 @@ impl Layer {
             Layer::Points { points, style } => {
                 (points.iter().all(|p| p.is_finite()), style.problem())
             }
+            Layer::Label { path, .. } => (path.is_finite(), None),
         };
         if !finite {
             return Err(RenderError::NonFinite { layer, kind });
@@ -113,6 +120,8 @@ pub struct Scene {
     margin: Option<f64>,
     view_box: Option<Rect>,
     y_down: bool,
+    /// A title drawn centred in a band at the top of the image.
+    title: Option<String>,
     layers: Vec<Layer>,
 }
 
@@ -131,6 +140,12 @@ impl Scene {
     /// images with a side shorter than `8 × DEFAULT_MARGIN` get a quarter
     /// of their shorter side instead.
     pub const DEFAULT_MARGIN: f64 = 20.0;
+    /// Height in pixels of the band a [title](Self::with_title) takes at the top.
+    pub const TITLE_BAND: f64 = 22.0;
+    /// Size in pixels per em of a title's type.
+    pub const TITLE_SIZE: f64 = 14.0;
+    /// Baseline of a title, in pixels from the top of the image.
+    const TITLE_BASELINE: f64 = 17.0;
 
     /// An empty 800×600 scene with the default margin (20 px), y down, and
     /// the view box fitted to the content.
@@ -141,6 +156,7 @@ impl Scene {
             margin: None,
             view_box: None,
             y_down: true,
+            title: None,
             layers: Vec::new(),
         }
     }
@@ -175,6 +191,35 @@ impl Scene {
     /// up, as in mathematics and font units.
     pub fn with_y_down(mut self, y_down: bool) -> Scene {
         self.y_down = y_down;
+        self
+    }
+
+    /// Gives the image a title: `text` set in [`TITLE_SIZE`](Self::TITLE_SIZE) px type,
+    /// centred in a band [`TITLE_BAND`](Self::TITLE_BAND) px tall at the top of the image.
+    /// The drawing is fitted into the image below the band (the margin still applies), so a
+    /// title never covers it.
+    pub fn with_title(mut self, text: &str) -> Scene {
+        self.title = Some(text.to_owned());
+        self
+    }
+
+    /// Adds a text label in `color`, `size_px` pixels per em, with its baseline through the
+    /// **pixel** position `at` (y down from the image's top-left corner, whatever the view)
+    /// and aligned there as `align` says. It is drawn as glyph outlines of a bundled font
+    /// (see [`TextAlign`]), so the SVG has no `<text>` and the pixels need no system font.
+    /// Labels do not take part in fitting the view.
+    pub fn label(
+        mut self,
+        text: &str,
+        at: Point,
+        size_px: f64,
+        align: TextAlign,
+        color: Color,
+    ) -> Scene {
+        self.layers.push(Layer::Label {
+            path: text_outline(text, at, size_px, align),
+            color,
+        });
         self
     }
 
@@ -270,7 +315,8 @@ impl Scene {
         let m = self
             .margin
             .unwrap_or_else(|| Self::DEFAULT_MARGIN.min(0.25 * w.min(h)));
-        let avail = Vec2::new(w - 2.0 * m, h - 2.0 * m);
+        let band = self.title_band();
+        let avail = Vec2::new(w - 2.0 * m, h - band - 2.0 * m);
         if !(m.is_finite() && m >= 0.0 && avail.x > 0.0 && avail.y > 0.0) {
             return Err(RenderError::InvalidMargin {
                 margin: m,
@@ -317,7 +363,7 @@ impl Scene {
         }
         let flip = if self.y_down { scale } else { -scale };
         let centre = view.center();
-        Ok(Affine::translate((0.5 * w, 0.5 * h))
+        Ok(Affine::translate((0.5 * w, 0.5 * (h + band)))
             * Affine::scale_non_uniform(scale, flip)
             * Affine::translate(-centre.to_vec2()))
     }
@@ -377,7 +423,13 @@ impl Scene {
                         write_circle(&mut svg, p, style);
                     }
                 }
+                Layer::Label { path, color } => write_label(&mut svg, path, *color),
             }
+        }
+        if let Some(title) = &self.title {
+            let at = Point::new(0.5 * f64::from(w), Self::TITLE_BASELINE);
+            let path = text_outline(title, at, Self::TITLE_SIZE, TextAlign::Middle);
+            write_label(&mut svg, &path, Color::BLACK);
         }
         svg.push_str("</svg>\n");
         Ok(svg)
@@ -419,6 +471,15 @@ impl Scene {
         self.render()?
             .encode_png()
             .map_err(|e| RenderError::PngEncode(Box::new(e)))
+    }
+
+    /// The height of the title band: [`TITLE_BAND`](Self::TITLE_BAND) with a title, else 0.
+    fn title_band(&self) -> f64 {
+        if self.title.is_some() {
+            Self::TITLE_BAND
+        } else {
+            0.0
+        }
     }
 
     fn check_size(&self) -> Result<(), RenderError> {
@@ -471,6 +532,15 @@ fn round_el(el: PathEl) -> PathEl {
         }
         PathEl::ClosePath => PathEl::ClosePath,
     }
+}
+
+/// Writes a label's outline (pixel coordinates), rounded, filled with `color`.
+fn write_label(svg: &mut String, path: &BezPath, color: Color) {
+    let mut path = path.clone();
+    for el in path.elements_mut() {
+        *el = round_el(*el);
+    }
+    write_path(svg, &path, &Style::filled(color));
 }
 
 /// Writes a rounded number in shortest round-trip form.

@@ -175,8 +175,8 @@ pub fn views_scene(
     Ok(scene.points(&points, PointStyle::INPUT))
 }
 
-/// The four [`VIEWS`] of a space curve side by side, each `panel × panel` pixels, with one
-/// comb scale for all.
+/// The four [`VIEWS`] of a space curve side by side, each `panel × panel` pixels and titled
+/// with its view's name, with one comb scale for all.
 ///
 /// # Errors
 ///
@@ -184,8 +184,9 @@ pub fn views_scene(
 pub fn views_figure(curve: &SpaceCurve, panel: u32) -> Result<Pixmap, FigureError> {
     let scale = curve.comb_scale();
     let mut images = Vec::with_capacity(VIEWS.len());
-    for (_, view) in VIEWS {
-        images.push(views_scene(curve, view, panel, panel, Some(scale))?.render()?);
+    for (name, view) in VIEWS {
+        let scene = views_scene(curve, view, panel, panel, Some(scale))?.with_title(name);
+        images.push(scene.render()?);
     }
     Ok(hstack(&images, PANEL_GAP)?)
 }

@@ -119,7 +119,8 @@ pub fn run(args: &GalleryArgs) -> Result<ExitCode> {
                 OVERVIEW_PANEL,
                 None,
             )
-            .map_err(|e| Failure::new(format!("{name}: {e}")))?;
+            .map_err(|e| Failure::new(format!("{name}: {e}")))?
+            .with_title(name);
             panels.push(
                 scene
                     .render()
@@ -197,10 +198,12 @@ fn bsplines() -> Result<Pixmap> {
     let scenes = [
         BSpline::periodic(&t4)
             .map_err(Failure::new)?
-            .scene(FIGURE_PANEL, FIGURE_PANEL),
+            .scene(FIGURE_PANEL, FIGURE_PANEL)
+            .with_title("T4, closed"),
         BSpline3::periodic(&e3)
             .map_err(Failure::new)?
-            .scene(view, FIGURE_PANEL, FIGURE_PANEL),
+            .scene(view, FIGURE_PANEL, FIGURE_PANEL)
+            .with_title("E3 trefoil, closed"),
     ];
     let images = scenes
         .iter()
