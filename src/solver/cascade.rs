@@ -1,95 +1,13 @@
 //! Cold solves: Newton after a few classic iterations, then continuation in the shape
 //! parameters.
 
-use super::newton::NEWTON_CHORD_MIN_BLOCKS;
 use super::problem::{Outcome, Problem, Settings, State};
+use super::tuning::cascade::{
+    Descent, ATTEMPT_BUDGET, A_HOMES, A_HOMES_TRIG, CLASSIC_START, CLASSIC_STARTS, FINE,
+};
+use super::tuning::newton::NEWTON_CHORD_MIN_BLOCKS;
 use super::workspace::Workspace;
 use crate::basis::Basis;
-
-/// Iterations of the classic loop used to start Newton from a cold start, one attempt each.
-const CLASSIC_STARTS: [usize; 3] = [3, 1, 12];
-
-/// Classic iterations that start the first solve of a continuation.
-pub(super) const CLASSIC_START: usize = 3;
-
-/// Iteration budget of each direct attempt before the next strategy is tried.
-const ATTEMPT_BUDGET: usize = 30;
-
-/// Shape parameters where the solver converges most reliably (measured on the drawings of
-/// the εκ paper), the starts of the continuation fallbacks, tried in this order.
-const A_HOMES: [f64; 4] = [0.85, 0.75, 0.95, 0.7];
-
-/// The same for trigonometric segments, plus a start below the usual targets: their
-/// solution branches coming from large `a` can fold just above `a = 0.65` (a peak moving
-/// into a segment end), where the branch coming from small `a` (peak at the end) goes on.
-const A_HOMES_TRIG: [f64; 4] = [0.85, 0.75, 0.95, 0.6];
-
-/// Iterations of one continuation from a home of [`A_HOMES`]. Uncapped, the first home
-/// could spend the whole budget creeping along a fold in small steps (1 900 iterations on
-/// the 16-point whole-pixel lemniscate), and the fallbacks after it never ran. With 600,
-/// κ solved two more whole-pixel samples than with 900, but not the 30-point sine
-/// `(10i, 50 sin 0.3i)`, which takes 1 814 iterations through the first home.
-const HOME_BUDGET: usize = 900;
-
-/// The fine continuation in the shapes, between the homes: from `a = 0.75`, with short
-/// first steps, a Newton budget of 100 a step and no step below 1e-3. Dense whole-pixel
-/// samples fold on the homes' long, cheap steps and converge on these: with the capped
-/// homes it raised κ on the whole-pixel samples of `tests/integer_input.rs` from 62 to 70
-/// of 84 (sines of 16–48 points, lemniscates of 8–24, the 24-point circle of radius 120).
-/// Its home is solved through the continuation out of nudged inflections where it does not
-/// solve directly: the lemniscate's crossing is an inflection through an input point with
-/// collinear neighbours at every shape, and the branch from the nudged home then reaches
-/// `a = 2/3`, which took κ from 70 to 74 (four lemniscates), with the same 11 983 of
-/// 11 993 grid walks (seeds 7, 11, 3). It runs after the first two homes: after all four,
-/// their 3 600 iterations left it about 310 of the 4 000 budget; moved up, it took κ to 75
-/// (the 48-point spiral of radius 120) with the same walks.
-/// Started from `a = 0.85` it solved one more sample, but three fewer grid walks; from 0.8
-/// (with the nudged home) five fewer samples and two fewer walks; steps down to 1e-4, two
-/// fewer samples and four fewer walks.
-const FINE: Descent = Descent {
-    home: 0.75,
-    first_step: 0.02,
-    min_step: 1e-3,
-    step_budget: 100,
-    budget: FINE_BUDGET,
-    nudge_home: true,
-};
-
-/// Iterations of the [`FINE`] continuation.
-const FINE_BUDGET: usize = 2000;
-
-/// One continuation in the shape parameters: its home, its steps and its budget.
-#[derive(Clone, Copy, Debug)]
-struct Descent {
-    home: f64,
-    first_step: f64,
-    min_step: f64,
-    step_budget: usize,
-    budget: usize,
-    /// Whether a home that does not solve directly is solved by the continuation out of
-    /// nudged inflections ([`Workspace::nudge_continuation`]).
-    nudge_home: bool,
-}
-
-impl Descent {
-    /// A continuation from `home` with the long, cheap steps that suit most input.
-    const fn coarse(home: f64) -> Descent {
-        Descent {
-            home,
-            first_step: 0.25,
-            min_step: MIN_STEP,
-            step_budget: STEP_BUDGET,
-            budget: HOME_BUDGET,
-            nudge_home: false,
-        }
-    }
-}
-
-/// Newton budget of one continuation step.
-pub(super) const STEP_BUDGET: usize = 16;
-
-/// Smallest continuation step in the homotopy parameter before an attempt is given up.
-pub(super) const MIN_STEP: f64 = 1e-6;
 
 /// The limits of [`Workspace::follow`]: the iteration budget and the smallest step.
 #[derive(Clone, Copy, Debug)]
@@ -280,7 +198,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// `steps.growth` after a converged step and halve after a failed one (back to the last
     /// solution), until `s`
     /// reaches 1, the steps shrink below `steps.min_step` or the iterations (counted from
-    /// `total`, each step capped at [`STEP_BUDGET`] through `budget`) reach
+    /// `total`, each step capped at [`STEP_BUDGET`](super::tuning::cascade::STEP_BUDGET) through `budget`) reach
     /// `steps.max_iterations`. A final polish solves `prob` itself. Where the homotopy
     /// moves the input points, each step first moves every control point `c_j` with its
     /// point `p_j` (as a warm re-solve does): a segment near its collapsed limit has `c_j`

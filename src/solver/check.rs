@@ -4,34 +4,10 @@
 use super::problem::Problem;
 use super::residual::Local;
 use super::split::split_min;
+use super::tuning::check::{MAX_FLOOR, RATIO_FLOOR, RATIO_NEAR_ONE, ROUNDING_FLOOR, STRAIGHTISH};
 use super::workspace::Workspace;
 use super::{dot, sub};
 use crate::parallel::join;
-
-/// Rounding floor of the dimensionless (G2 and peak) residuals times the local segment
-/// length, in normalized coordinates: 64 ulps of a unit coordinate.
-const ROUNDING_FLOOR: f64 = 64.0 * f64::EPSILON;
-
-/// The largest rounding floor granted to a near-degenerate joint (see
-/// [`Workspace::check_row`]): its relative |κ| mismatch still has to be below this.
-const MAX_FLOOR: f64 = 1e-6;
-
-/// The largest rounding floor granted to a row made of a ratio near 1 (see
-/// [`Workspace::check_scales`]): `1 - λ` carries a relative error of about `ε/(1 - λ)`,
-/// which this caps where `1 - λ` is as small as [`LAMBDA_MIN`](super::LAMBDA_MIN) allows.
-const RATIO_FLOOR: f64 = 1e-3;
-
-/// A segment counts as shrinking towards its input point when `1 - λ_{j-1}` and `λ_j` are
-/// both below this: its rows get the floors of [`RATIO_FLOOR`]'s doc. (A single ratio near
-/// 1 is a curve heading elsewhere: relaxing its rows there measured worse window
-/// re-solves.)
-const RATIO_NEAR_ONE: f64 = 1e-4;
-
-/// The largest sine of the control polygon's turn at a segment still counted as shrinking
-/// towards its point (see [`Joint::turn_within`]): the polygon of a segment collapsing at
-/// an inflection turns by `O(1 - λ)` (see [`Joint::collapsed`]); a segment shrinking at a
-/// real corner is a curve heading to another solution.
-pub(super) const STRAIGHTISH: f64 = 1e-4;
 
 impl<const D: usize, const B: usize> Workspace<D, B> {
     /// Largest scaled residual component.

@@ -1,18 +1,17 @@
 //! The classic local/global iteration (seed 000 Algorithm 1) that starts Newton, and the
 //! extrapolation of its last steps.
 
-use super::newton::NEWTON_CHORD_MIN_BLOCKS;
-use super::peak::{peak_parameter, EndTerms, LONG_START_PEAK_T_TOLERANCE, START_PEAK_T_TOLERANCE};
+use super::peak::{peak_parameter, EndTerms};
 use super::problem::{Problem, State};
 use super::residual::JointTerms;
 use super::split::{split4, Split};
+use super::tuning::classic::EXTRAPOLATE_COSINE;
+use super::tuning::newton::NEWTON_CHORD_MIN_BLOCKS;
+use super::tuning::peak::{LONG_START_PEAK_T_TOLERANCE, START_PEAK_T_TOLERANCE};
 use super::workspace::Workspace;
 use super::{lerp, LAMBDA_MIN};
 use crate::basis::SegmentBasis;
 use crate::linalg::solve_tridiagonal;
-
-/// Least cosine between the last two classic steps for [`Workspace::extrapolate`].
-const EXTRAPOLATE_COSINE: f64 = 0.9;
 
 impl<const D: usize, const B: usize> Workspace<D, B> {
     /// One iteration of the classic local/global loop (seed 000 Algorithm 1), generalized

@@ -3,6 +3,7 @@
 
 use super::linear::Columns;
 use super::split::{split4, Split};
+use super::tuning::condense::{BACK_MAX, MIN_PIVOT};
 use super::workspace::Workspace;
 
 /// The elimination of `t_j` from block row `j` (static condensation): `t_j` appears only in
@@ -21,9 +22,6 @@ pub(super) struct Condensed<const B: usize> {
     vals: [f64; BACK_MAX],
     len: usize,
 }
-
-/// Most condensed unknowns in a block's stencil: four blocks of `D + 1` (3D: 16).
-const BACK_MAX: usize = 16;
 
 impl<const B: usize> Default for Condensed<B> {
     fn default() -> Self {
@@ -64,10 +62,6 @@ impl<const B: usize> Condensed<B> {
             .sum()
     }
 }
-
-/// Smallest pivot magnitude accepted when eliminating `t_j` (the rows are scaled to O(1)); a
-/// smaller one is clamped, which keeps the step finite at a degenerate peak.
-const MIN_PIVOT: f64 = 1e-14;
 
 impl<const D: usize, const B: usize> Workspace<D, B> {
     /// The Newton (or, with an older factorization, chord) step for the current residual:

@@ -2,6 +2,7 @@
 //! bordered, dense or split factorization.
 
 use super::split::Split;
+use super::tuning::linear::DENSE_ORDER;
 use super::wrap;
 use crate::linalg::{BandLu, BorderedLu, DenseLu, SplitLu};
 
@@ -27,10 +28,6 @@ enum LinearMode {
     /// Long curves: two halves and a border ([`SplitLu`]), side by side.
     Split,
 }
-
-/// Systems up to this order are solved densely (a few small closed curves are the common
-/// case in drawings; the bordered solve only pays off above that).
-const DENSE_ORDER: usize = 24;
 
 impl Linear {
     pub(super) fn reset(&mut self, closed: bool, n: usize, b: usize) {

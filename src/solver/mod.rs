@@ -49,6 +49,7 @@ mod problem;
 mod residual;
 mod split;
 mod tangent;
+mod tuning;
 mod window;
 mod workspace;
 
@@ -59,15 +60,9 @@ mod linear_tests;
 
 pub(crate) use problem::{Outcome, Problem, Settings, State};
 pub(crate) use tangent::{Tangent, TangentAt};
+use tuning::system::{EPS_GRAM, LAMBDA_MIN};
 pub(crate) use window::Edit;
 pub(crate) use workspace::Workspace;
-
-/// Regularization of the squared doubled triangle area, in normalized coordinates (drawing
-/// size 1): keeps the area differentiable for straight stretches while far below any real
-/// area (a triangle with sides 1e-10 has a squared doubled area ≈ 1e-40).
-const EPS_GRAM: f64 = 1e-60;
-/// Bounds for λ during the line search (it must stay strictly inside (0, 1)).
-const LAMBDA_MIN: f64 = 1e-12;
 
 #[inline]
 fn sub<const D: usize>(a: [f64; D], b: [f64; D]) -> [f64; D] {

@@ -1,62 +1,17 @@
 //! Newton's method on the whole system: the solve loop, Newton steps with their line
 //! search, and chord steps with stored factors.
 
-use super::check::{Joint, STRAIGHTISH};
+use super::check::Joint;
 use super::problem::{Outcome, Problem, Settings, State};
 use super::split::split_min;
+use super::tuning::check::STRAIGHTISH;
+use super::tuning::newton::{
+    CHORD_CONTRACTION, EXPAND_RATIO, MAX_CHORD, NEAR_CHORD_CONTRACTION, NEWTON_CHORD_CONTRACTION,
+    NEWTON_CHORD_MIN_BLOCKS, NEWTON_CHORD_NEAR, PARTNER, QUADRATIC_REGION, T_LANDING,
+};
 use super::workspace::{LinState, Workspace};
 use super::{sub, LAMBDA_MIN};
 use crate::parallel::join;
-
-/// Within this factor of the tolerance, full Newton steps are taken without the line search's
-/// decrease test (the merit is at rounding noise there for very large curves).
-const QUADRATIC_REGION: f64 = 1e3;
-
-/// Chord steps (warm re-solves) must shrink the merit by this factor or Newton takes over.
-const CHORD_CONTRACTION: f64 = 1e-2;
-
-/// Chord steps after a Newton step (with its factors) must shrink the merit by this
-/// factor: only where the Jacobian hardly changes any more, so they cannot lead Newton
-/// astray.
-const NEWTON_CHORD_CONTRACTION: f64 = 1e-4;
-
-/// The same for the near-solution chord steps of shorter curves ([`NEWTON_CHORD_NEAR`]):
-/// there a Newton step costs only a few chord steps, and one chord step that contracts the
-/// merit a thousandfold is still the cheaper way on (2.6 % of the bear's κ instructions
-/// against `1e-4`; its εκ solve takes the same steps).
-const NEAR_CHORD_CONTRACTION: f64 = 1e-3;
-
-/// Chord steps follow every Newton step on curves with at least this many segments, where
-/// assembling and factoring dominate (a chord step costs about a quarter of a Newton step
-/// there). Shorter curves take them only near the solution ([`NEWTON_CHORD_NEAR`]): from
-/// farther away the saving is small, and the different path through the iterations can
-/// end on another solution branch.
-pub(super) const NEWTON_CHORD_MIN_BLOCKS: usize = 256;
-
-/// Shorter curves follow a Newton step with chord steps once the step has brought the
-/// residual below this (relative to the drawing size). That close, the chord steps (each
-/// must contract the merit by [`NEAR_CHORD_CONTRACTION`], or Newton takes over again)
-/// reach the solution Newton would, and the assembly and factorization of the last Newton
-/// step or two are saved: 10 % of the bear's κ instructions, 14 % of its εκ ones. With the
-/// extrapolated classic start, 3e-5 measured best on the bear (1e-4, 3e-4 and 1e-5 more
-/// instructions) and on the 109 drawing curves (fewer iterations for every scheme).
-const NEWTON_CHORD_NEAR: f64 = 3e-5;
-
-/// At most this many chord steps per warm re-solve.
-const MAX_CHORD: usize = 12;
-
-/// A full Newton step that leaves more than this fraction of the merit is followed by a trial
-/// of the same step again (kept if it lowers the merit further). Where the Newton model
-/// undershoots, as on a stiff curve whose peak heads for a segment end while its λ shrinks
-/// by a near-constant factor per step, this takes two steps' progress for one factorization.
-/// Measured on the bear: 0.25 and 0.1 the same, 0.5 and 0.05 worse; doubling again more
-/// than once gained nothing.
-const EXPAND_RATIO: f64 = 0.25;
-
-/// A Newton step that lands `t` within this of an end of `[0, 1]` is taken in full, `t`
-/// clamped to the end: a peak forced to a segment end is reached in one step, not approached
-/// at the rate of the step-to-bound factor.
-const T_LANDING: f64 = 1e-9;
 
 /// Whether a joint ratio is usable after a step: inside `(0, 1]` (1 up to rounding, for the
 /// fixed last ratio of open curves).
@@ -102,13 +57,10 @@ fn pinned_at_bound<const D: usize>(st: &State<D>, j: usize, dl: f64) -> bool {
     }
 }
 
-/// How close to its bound the partner of a held ratio must be (see [`pinned`]).
-const PARTNER: f64 = 1e-6;
-
 impl<const D: usize, const B: usize> Workspace<D, B> {
     /// Solve from the current state (a cold start or a previous solution), after `classic`
     /// iterations of the classic loop; with `loose`, those solve for `t` only to
-    /// [`START_PEAK_T_TOLERANCE`](super::peak::START_PEAK_T_TOLERANCE) (the first attempt of a cold solve: the fallbacks start as
+    /// [`START_PEAK_T_TOLERANCE`](super::tuning::peak::START_PEAK_T_TOLERANCE) (the first attempt of a cold solve: the fallbacks start as
     /// carefully as they always did).
     pub(crate) fn solve(
         &mut self,

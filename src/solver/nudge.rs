@@ -23,27 +23,8 @@
 //! that converged before changes.
 
 use super::cascade::Homotopy;
+use super::tuning::nudge::{BUDGET, COLLINEAR, END, MIN_STEP, NUDGE, STEP_BUDGET};
 use super::{dot, Outcome, Problem, Settings, Workspace};
-
-/// Sine of the angle `p_{j-1} p_j p_{j+1}` below which a point counts as collinear with its
-/// neighbours. Whole-pixel input is collinear exactly; the near-collinear band converges
-/// without a nudge (the sweeps of `tests/collinear.rs`).
-const COLLINEAR: f64 = 1e-9;
-/// The first nudge, as a fraction of the distance to the nearer neighbour: on the 8-point
-/// lemniscate (κ) nudges of 1e-3 and 1e-4 of it converged cold, 2e-5 did not.
-const NUDGE: f64 = 1e-2;
-/// The last nudge of the path, as a fraction of the tolerance: the polish then starts
-/// within the tolerance of the input.
-const END: f64 = 1e-2;
-/// Iterations for one sign: the nudged input's cold cascade and the path back. The point
-/// continuation runs after this and solves most hairpin walks: with 1 000, 4 fewer of the
-/// 11 993 grid walks of seeds 7, 11 and 3 converged (κ and εκ-trig) than with 700, and 400
-/// lost two whole-pixel lemniscates.
-const BUDGET: usize = 700;
-/// Newton budget of one step along the path (as in the point continuation).
-const STEP_BUDGET: usize = 100;
-/// Smallest step in `s` (a quarter of a decade of nudge, about) before a sign is given up.
-const MIN_STEP: f64 = 0.02;
 
 /// For each free point of `prob` collinear with its neighbours ([`COLLINEAR`]), its nudge:
 /// a unit normal of the neighbours' line times [`NUDGE`] times the distance to the nearer

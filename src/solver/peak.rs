@@ -1,33 +1,9 @@
 //! The peak parameter `t`: the classic loop's root solve for it, and the peak row of the
 //! Newton system.
 
+use super::tuning::peak::{PEAK_T_TOLERANCE, QUADRATIC_PEAK_TOLERANCE, ROOT_ITERATIONS};
 use super::{dot, sub};
 use crate::basis::{Basis, SegmentBasis, Stationarity};
-
-/// Accuracy of `t` in the classic loop's root solve: Newton refines it afterwards, so the
-/// start-up iterations need not resolve it to the last digit.
-const PEAK_T_TOLERANCE: f64 = 1e-10;
-
-/// Accuracy of `t` for quadratic segments, whose peak is the root of a cubic: to rounding.
-const QUADRATIC_PEAK_TOLERANCE: f64 = 1e-14;
-
-/// The same in the classic iterations that start the first Newton attempt of a cold solve.
-/// The root solve stops once a Newton correction is below this, after applying it, so where
-/// it converges quadratically `t` is still accurate to about the square of this; where it
-/// does not, Newton refines `t` anyway: a start needs no more. (1e-8 in place of the full
-/// tolerance took 13 % off the bear's εκ solve, 1e-2 in place of 1e-8 a further 10 %, at a
-/// few more Newton and chord steps. The fallback attempts keep the tighter tolerances: on
-/// hostile input their path is sensitive to every digit of the start.)
-pub(super) const START_PEAK_T_TOLERANCE: f64 = 1e-2;
-
-/// The same for curves of [`NEWTON_CHORD_MIN_BLOCKS`](super::newton::NEWTON_CHORD_MIN_BLOCKS) segments or more: their re-solves
-/// after a small move work at the rounding floor of thousands of rows, and a smooth
-/// 2 000-point loop started from the looser tolerance's solution stopped at 1.6 times
-/// the tolerance.
-pub(super) const LONG_START_PEAK_T_TOLERANCE: f64 = 1e-8;
-
-/// Iteration cap of the 1-D root solve for `t` in the classic loop.
-const ROOT_ITERATIONS: usize = 60;
 
 /// The peak row `t - clamp(t - g, 0, 1)` of a block with peak parameter `t` and scaled
 /// stationarity residual `g` (a box complementarity, for the semi-smooth Newton step), and
@@ -76,7 +52,7 @@ impl EndTerms {
 /// by `w1²`, is `f(t) = c_rr r̃·r̃ + c_rs r̃·s̃ + c_ss s̃·s̃` with `r̃ = (p - q0) - w2 d`,
 /// `s̃ = (q2 - p) - w0 d`, `d = q2 - q0`; `f(0) ≥ 0 ≥ f(1)`, and the root is found by
 /// Newton's method safeguarded by bisection, to the tolerance `start` where given (the classic
-/// iterations that start a cold solve: [`START_PEAK_T_TOLERANCE`]), otherwise to the full one.
+/// iterations that start a cold solve: [`START_PEAK_T_TOLERANCE`](super::tuning::peak::START_PEAK_T_TOLERANCE)), otherwise to the full one.
 #[inline]
 pub(super) fn peak_parameter<const D: usize>(
     basis: Basis,

@@ -31,26 +31,8 @@
 //! the neighbour distance, per-home budgets of 200 or 400, or a secant predictor along the
 //! path each lost more walks than these settings.
 
+use super::tuning::points::{HOMES, HOME_BUDGET, JITTER, MIN_STEP, SMOOTHED_BUDGET, STEP_BUDGET};
 use super::{Outcome, Problem, Settings, Workspace};
-
-/// The jitter of a home: each coordinate of a free point moves by up to this fraction of
-/// the distance to its nearer neighbour.
-const JITTER: f64 = 0.125;
-/// Homes tried at most; in practice the iteration cap ends the search first.
-const HOMES: u64 = 30;
-/// Iterations for one jittered home: its cold solve and the path back to the input.
-const HOME_BUDGET: usize = 300;
-/// Iterations for the smoothed home, tried first: dense samples of smooth curves need
-/// more of them (the 35-point sine of docs/curves.md, εκ a = 0.72: 1 621) than the
-/// hairpins of grid walks, which the jittered homes solve.
-const SMOOTHED_BUDGET: usize = 600;
-/// Newton budget of one step along the path: steps are long (a quarter of the way at
-/// first), and on the grid walks 16 (the shape continuation's budget) or 40 iterations
-/// lost curves that 100 (a warm re-solve's budget) found.
-const STEP_BUDGET: usize = 100;
-/// Smallest step in `s` before a home is given up: a home that needs finer steps is
-/// cheaper to replace than to follow.
-const MIN_STEP: f64 = 1e-3;
 
 /// A pseudo-random number in `[-1, 1)` from `state` (a 64-bit LCG step, Knuth's
 /// constants; the top 53 bits).

@@ -1,9 +1,7 @@
 //! Long curves cut in two halves and a border ([`Split`]), worked on side by side.
 
+use super::tuning::split::SPLIT_MIN_BLOCKS;
 use crate::parallel::join;
-
-/// Curves of this many blocks or more are solved in two halves (see [`Split`]).
-const SPLIT_MIN_BLOCKS: usize = 2048;
 
 /// The length from which curves are cut ([`SPLIT_MIN_BLOCKS`]; the unit tests lower it to
 /// cut short curves).

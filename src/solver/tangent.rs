@@ -48,18 +48,13 @@
 //! each direction from the free curve's tangent to the prescribed one in adaptive steps, so
 //! the solution found is on the free curve's branch.
 
-use super::cascade::{Homotopy, CLASSIC_START};
+use super::cascade::Homotopy;
 use super::linear::Var;
 use super::residual::Local;
+use super::tuning::cascade::CLASSIC_START;
+use super::tuning::tangent::TANGENT_MIN_STEP;
 use super::{dot, Outcome, Problem, Settings, State, Workspace};
 use crate::basis::{Basis, SegmentBasis};
-
-/// The smallest step of [`Workspace::tangent_continuation`] (a fraction of each turn).
-/// Where the directions cannot be turned further in steps of this size, the tangents have
-/// usually left the range where a solution exists (the constrained point would have to
-/// leave its segment): measured on the alphabets of DejaVu Sans and EB Garamond, stopping
-/// at 1/128 instead of 1e-6 keeps the same tangents and drafts in a third of the time.
-const TANGENT_MIN_STEP: f64 = 1.0 / 128.0;
 
 /// A tangent constraint on a block: the curve's tangent at a parameter of the block's
 /// segment must point along `dir` (a unit vector, normalized coordinates; 2D only).
@@ -307,7 +302,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         let steps = Homotopy {
             max_iterations: set.max_iterations,
             min_step: TANGENT_MIN_STEP,
-            step_budget: super::cascade::STEP_BUDGET,
+            step_budget: super::tuning::cascade::STEP_BUDGET,
             first_step: 0.25,
             growth: 1.5,
         };

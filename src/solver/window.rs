@@ -35,30 +35,12 @@ use super::condense::{condense, Condensed};
 use super::linear::{scatter, Columns};
 use super::newton::lambda_valid;
 use super::split::Split;
+use super::tuning::window::{
+    CHORD_RATE, FULL_RATE, HALF, MAX_FULL, MAX_MOVED, MAX_NEWTON, MAX_STEPS, MIN_DAMPING,
+    WINDOW_MIN_BLOCKS,
+};
 use super::{Outcome, Problem, Settings, Workspace};
 use crate::linalg::BandLu;
-
-/// Blocks of the window on either side of the moved ones: at the window's edge the solution
-/// moves about `7^-7 ≈ 1e-6` times as much as at the moved point (jagged loops), so the
-/// outer blocks' linearization errs by about the square of that.
-const HALF: usize = 7;
-/// Most consecutive blocks an edit may move for a window re-solve.
-const MAX_MOVED: usize = 3;
-/// Curves with fewer blocks are re-solved globally (a window would cover most of them).
-pub(crate) const WINDOW_MIN_BLOCKS: usize = 32;
-/// A chord step must shrink the window's residual by this factor or better; otherwise the
-/// Jacobian is assembled and factored anew.
-const CHORD_RATE: f64 = 0.1;
-/// Chord steps on the whole curve after the window's (where the outer blocks' linearization
-/// is not accurate enough), and the factor by which each must shrink the residual.
-const MAX_FULL: usize = 6;
-const FULL_RATE: f64 = 0.25;
-/// Newton steps on the window before the global steps take over.
-const MAX_NEWTON: usize = 8;
-/// Steps on the window (chord and Newton) before the global steps take over.
-const MAX_STEPS: usize = 16;
-/// A window Newton step halved below this fraction gives up (the global steps take over).
-const MIN_DAMPING: f64 = 1.0 / 64.0;
 
 /// The blocks an edit moved: `count` consecutive blocks from `first` (cyclically for closed
 /// curves).
