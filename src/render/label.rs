@@ -26,7 +26,7 @@ pub enum TextAlign {
 }
 
 /// The outline of `text` set at `size_px` pixels per em in y-down pixel coordinates, with its
-/// baseline through `at` aligned as `align` says, and the text's advance width in pixels.
+/// baseline through `at` aligned as `align` says (the text's advance width decides the shift).
 ///
 /// A character the subset lacks is drawn as the font's `.notdef` box, so a missing glyph is
 /// visible rather than silently dropped. Line breaks are not interpreted.

@@ -406,9 +406,7 @@ impl Scene {
                 Layer::Path { path, style, .. } => {
                     let mut path = path.clone();
                     path.apply_affine(transform);
-                    for el in path.elements_mut() {
-                        *el = round_el(*el);
-                    }
+                    round_path(&mut path);
                     if !path.is_finite() {
                         return Err(out_of_range);
                     }
@@ -534,12 +532,17 @@ fn round_el(el: PathEl) -> PathEl {
     }
 }
 
-/// Writes a label's outline (pixel coordinates), rounded, filled with `color`.
-fn write_label(svg: &mut String, path: &BezPath, color: Color) {
-    let mut path = path.clone();
+/// Rounds every coordinate of `path` to `1 / SVG_PRECISION`.
+fn round_path(path: &mut BezPath) {
     for el in path.elements_mut() {
         *el = round_el(*el);
     }
+}
+
+/// Writes a label's outline (pixel coordinates), rounded, filled with `color`.
+fn write_label(svg: &mut String, path: &BezPath, color: Color) {
+    let mut path = path.clone();
+    round_path(&mut path);
     write_path(svg, &path, &Style::filled(color));
 }
 
