@@ -10,7 +10,7 @@ use crate::Error;
 pub const SVG_METADATA_ID: &str = "kappa-document";
 
 /// The most points a file may hold (over all contours): more is refused rather than solved.
-const MAX_POINTS: usize = 100_000;
+pub(super) const MAX_POINTS: usize = 100_000;
 
 /// The file of a [`Drawing`]: its contours, each a [`PathDoc`] with its points, shapes,
 /// corners, closed flag, scheme and saved solution.
@@ -104,128 +104,18 @@ impl Drawing {
 /// [`DrawingDoc::from_json`] for its content.
 pub fn extract_svg_document(svg: &str) -> Result<DrawingDoc, Error> {
     let missing = || Error::InvalidSvg("no kappa document in this SVG".into());
-    let id = format!("id=\"{SVG_METADATA_ID}\"");
-    let at = svg.find(&id).ok_or_else(missing)?;
-    let start = at + svg[at..].find('>').ok_or_else(missing)? + 1;
-    let len = svg[start..].find("</").ok_or_else(missing)?;
-    let mut text = svg[start..start + len].trim();
-    if let Some(inner) = text
-        .strip_prefix("<![CDATA[")
-        .and_then(|t| t.strip_suffix("]]>"))
-    {
-        text = inner;
-    }
-    let json = text
-        .replace("&lt;", "<")
-        .replace("&gt;", ">")
-        .replace("&quot;", "\"")
-        .replace("&apos;", "'")
-        .replace("&amp;", "&");
-    DrawingDoc::from_json(&json)
-}
-
-/// The vertices of every `<path d="…">` of an SVG drawn elsewhere, as a drawing in `scheme`
-/// (the shapes its default): each subpath becomes a contour through the end points of its
-/// segments (control points are not taken), closed where the subpath is, without repeating
-/// its first point. Transforms and other elements are ignored (with feature `render`,
-/// [`import_svg`](super::import_svg) reads them all).
-///
-/// # Errors
-///
-/// [`Error::InvalidSvg`] when no path data parses, or when there are more than 100 000
-/// vertices.
-pub fn import_svg_paths(svg: &str, scheme: crate::Scheme) -> Result<DrawingDoc, Error> {
-    let mut contours = Vec::new();
-    let mut total = 0;
-    let mut rest = svg;
-    while let Some(i) = rest.find("<path") {
-        rest = &rest[i + 5..];
-        let tag = &rest[..rest.find('>').unwrap_or(rest.len())];
-        let Some(d) = attribute(tag, "d") else {
-            continue;
-        };
-        let Ok(path) = kurbo::BezPath::from_svg(d) else {
-            continue;
-        };
-        let mut points: Vec<kurbo::Point> = Vec::new();
-        let mut flush = |points: &mut Vec<kurbo::Point>, closed: bool| {
-            if closed && points.len() > 1 && points.first() == points.last() {
-                points.pop();
-            }
-            if !points.is_empty() && points.iter().all(|p| p.is_finite()) {
-                total += points.len();
-                contours.push(PathDoc {
-                    points: points
-                        .iter()
-                        .map(|p| super::EditPoint {
-                            x: p.x,
-                            y: p.y,
-                            shape: scheme.neutral_shape(),
-                            corner: false,
-                            tangent: None,
-                            tangent_in: None,
-                        })
-                        .collect(),
-                    closed: closed && points.len() >= 3,
-                    scheme,
-                    solution: Vec::new(),
-                });
-            }
-            points.clear();
-        };
-        for el in path.elements() {
-            match *el {
-                kurbo::PathEl::MoveTo(p) => {
-                    flush(&mut points, false);
-                    points.push(p);
-                }
-                kurbo::PathEl::ClosePath => flush(&mut points, true),
-                el => {
-                    if let Some(p) = el.end_point() {
-                        // A repeated vertex (a zero-length segment) is taken once.
-                        if points.last() != Some(&p) {
-                            points.push(p);
-                        }
-                    }
-                }
-            }
-        }
-        flush(&mut points, false);
-    }
-    if contours.is_empty() {
-        return Err(Error::InvalidSvg("no path data in this SVG".into()));
-    }
-    if total > MAX_POINTS {
-        return Err(Error::InvalidSvg(format!(
-            "the paths have {total} vertices, more than {MAX_POINTS}"
-        )));
-    }
-    Ok(DrawingDoc { contours })
-}
-
-/// The value of attribute `name` in the text of a tag (quoted with `"` or `'`).
-fn attribute<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
-    let mut from = 0;
-    while let Some(i) = tag[from..].find(name) {
-        let at = from + i;
-        from = at + name.len();
-        let before = tag[..at].chars().next_back();
-        if !before.is_some_and(char::is_whitespace) {
-            continue;
-        }
-        let after = tag[from..].trim_start();
-        let Some(after) = after.strip_prefix('=') else {
-            continue;
-        };
-        let after = after.trim_start();
-        let quote = after.chars().next()?;
-        if quote != '"' && quote != '\'' {
-            continue;
-        }
-        let value = &after[1..];
-        return value.find(quote).map(|end| &value[..end]);
-    }
-    None
+    let xml = roxmltree::Document::parse(svg).map_err(|e| Error::InvalidSvg(e.to_string()))?;
+    let meta = xml
+        .descendants()
+        .find(|n| n.attribute("id") == Some(SVG_METADATA_ID))
+        .ok_or_else(missing)?;
+    // The element's text, entities decoded and CDATA sections included.
+    let json: String = meta
+        .children()
+        .filter(roxmltree::Node::is_text)
+        .filter_map(|t| t.text())
+        .collect();
+    DrawingDoc::from_json(json.trim())
 }
 
 #[cfg(test)]
@@ -233,47 +123,6 @@ mod tests {
     use super::*;
     use crate::Scheme;
     use kurbo::Point;
-
-    #[test]
-    fn paths_of_other_tools_import_as_vertices() {
-        let svg = r#"<svg xmlns="http://www.w3.org/2000/svg"><g>
-            <path fill="red" d="M10 10 L100 10 C120 50 120 60 100 100 L10 100 Z
-                m 30 30 h 20 v 20"/>
-            <path id="x" data-d="no" d='M0 0 Q 5 5 10 0'/><path d="nonsense"/></g></svg>"#;
-        let doc = import_svg_paths(svg, Scheme::EkCubic).unwrap();
-        assert_eq!(doc.contours.len(), 3);
-        let xy = |c: &PathDoc| -> Vec<(f64, f64)> { c.points.iter().map(|p| (p.x, p.y)).collect() };
-        assert_eq!(
-            xy(&doc.contours[0]),
-            [(10.0, 10.0), (100.0, 10.0), (100.0, 100.0), (10.0, 100.0)]
-        );
-        assert!(doc.contours[0].closed);
-        // A relative move after Z starts from the subpath's start.
-        assert_eq!(
-            xy(&doc.contours[1]),
-            [(40.0, 40.0), (60.0, 40.0), (60.0, 60.0)]
-        );
-        assert!(!doc.contours[1].closed);
-        assert_eq!(xy(&doc.contours[2]), [(0.0, 0.0), (10.0, 0.0)]);
-        assert!(doc.contours.iter().all(|c| c.scheme == Scheme::EkCubic));
-        let (d, changes) = Drawing::from_docs(doc.contours, Scheme::Kappa);
-        assert_eq!(d.len(), 3);
-        assert!(changes.iter().all(|c| c.errors.is_empty()));
-        for bad in [
-            "<svg/>",
-            "<path d=\"x\"/>",
-            "<path",
-            "<path d=\"M1e999 0 L 1 1\"/>",
-        ] {
-            assert!(
-                matches!(
-                    import_svg_paths(bad, Scheme::Kappa),
-                    Err(Error::InvalidSvg(_))
-                ),
-                "{bad}"
-            );
-        }
-    }
 
     #[test]
     fn old_single_path_documents_load() {

@@ -56,16 +56,20 @@ mod history;
 mod pieces;
 #[cfg(feature = "render")]
 mod svg;
+#[cfg(feature = "serde")]
+mod svg_paths;
 mod view;
 
 pub use comb::{Comb, CombStyle};
 pub use document::{join_line, EditPoint, PathDoc};
 pub use drawing::Drawing;
 #[cfg(feature = "serde")]
-pub use file::{extract_svg_document, import_svg_paths, DrawingDoc, SVG_METADATA_ID};
+pub use file::{extract_svg_document, DrawingDoc, SVG_METADATA_ID};
 pub use pieces::DRAG_WORK;
 #[cfg(feature = "render")]
 pub use svg::import_svg;
+#[cfg(feature = "serde")]
+pub use svg_paths::import_svg_paths;
 pub use view::Hit;
 
 use crate::{Error, Scheme, Spline};

@@ -811,9 +811,12 @@ test("save, reload, open: the drawing is kept; SVG export is closed and opens ag
   assert.equal(await page.evaluate(() => window.kappa.contours()), 1);
   await page.keyboard.press("Control+z");
   assert.equal(await page.evaluate(() => window.kappa.contours()), 2);
-  // An SVG drawn elsewhere, dropped on the page: its paths' vertices become the points.
-  const foreign = '<svg xmlns="http://www.w3.org/2000/svg"><path d="M100 100 C150 50 250 50 300 100 ' +
-    'L300 300 L100 300 Z M150 150 h100 v100 h-100 z"/></svg>';
+  // An SVG drawn elsewhere, dropped on the page: its paths' vertices become the points, in
+  // the document's user space (the group's and the path's transforms applied), with corners
+  // where the curve meets the lines.
+  const foreign = '<svg xmlns="http://www.w3.org/2000/svg"><g transform="translate(50 0)">' +
+    '<path transform="translate(50 100) scale(2)" d="M0 0 C25 -25 75 -25 100 0 ' +
+    'L100 100 L0 100 Z M25 25 h50 v50 h-50 z"/></g></svg>';
   await page.evaluate((text) => {
     const data = new DataTransfer();
     data.items.add(new File([text], "other.svg", { type: "image/svg+xml" }));
@@ -823,6 +826,8 @@ test("save, reload, open: the drawing is kept; SVG export is closed and opens ag
   const imported = await page.evaluate(() => [0, 1].map((k) => window.kappa.points(k).map((p) => [p.x, p.y])));
   assert.deepEqual(imported, [[[100, 100], [300, 100], [300, 300], [100, 300]],
     [[150, 150], [250, 150], [250, 250], [150, 250]]]);
+  const corners = await page.evaluate(() => [0, 1].map((k) => window.kappa.points(k).map((p) => p.corner)));
+  assert.deepEqual(corners, [[true, true, false, false], [false, false, false, false]]);
   await checkCurve(DRAWN_TOL["ek-cubic"]);
   await page.keyboard.press("Control+z");
   assert.deepEqual(await page.evaluate(() => JSON.parse(window.kappa.save()).contours.map((c) => c.points)),
