@@ -24,6 +24,7 @@ const MIN_SCALE = 0.02, MAX_SCALE = 64;
 const WARNING_COLOR = "#e07000"; // a piece whose solve did not converge (its best curve)
 const STORAGE_KEY = "kappa-path-tool/drawing";
 const VIEW_KEY = "kappa-path-tool/view";
+const SNAP_KEY = "kappa-path-tool/snap";
 
 const $ = (id) => document.getElementById(id);
 const canvas = $("canvas");
@@ -50,6 +51,7 @@ const ui = {
   hover: null,        // the pointer in doc coordinates (for the preview), or null
   lastDown: null,     // the last press on a point {time, contour, index}
   comb: $("comb").checked,
+  snap: false,        // new, dragged and nudged points land on whole units
   combScale: 0,       // the comb's scale, kept during a drag
   lastUpdateMs: null,
   message: "",
@@ -58,6 +60,9 @@ const ui = {
 const SHAPE_RANGE = { "kappa": null, "ek-cubic": [0.667, 0.99], "ek-trig": [0.5, 0.99] };
 
 const toDoc = (s) => ({ x: (s.x - view.tx) / view.scale, y: (s.y - view.ty) / view.scale });
+// A point in doc coordinates where a click, a drag or a nudge puts it: on whole units when
+// snapping is on.
+const placed = (p) => (ui.snap ? { x: Math.round(p.x), y: Math.round(p.y) } : p);
 const toScreen = (p) => ({ x: p.x * view.scale + view.tx, y: p.y * view.scale + view.ty });
 const totalPoints = () => {
   let n = 0;
@@ -546,7 +551,7 @@ canvas.addEventListener("pointerdown", (e) => {
     ui.tap = { id: e.pointerId, s, p };
     return;
   }
-  const at = addPoint(p);
+  const at = addPoint(placed(p));
   ui.drag = { id: e.pointerId, ...at };
   refresh();
 });
@@ -593,7 +598,8 @@ canvas.addEventListener("pointermove", (e) => {
   if (ui.drag && ui.drag.id === e.pointerId) {
     const t0 = performance.now();
     engine.setActive(ui.drag.contour);
-    const errors = engine.dragPoint(ui.drag.index, p.x, p.y);
+    const q = placed(p);
+    const errors = engine.dragPoint(ui.drag.index, q.x, q.y);
     draw();
     ui.lastUpdateMs = performance.now() - t0;
     ui.message = errors > 0 ? engine.lastError() : "";
@@ -601,7 +607,7 @@ canvas.addEventListener("pointermove", (e) => {
     return;
   }
   if (e.pointerType === "touch") return;
-  ui.hover = p;
+  ui.hover = placed(p);
   const near = engine.nearestPoint(p.x, p.y, PICK_RADIUS / view.scale);
   const active = engine.active();
   canvas.classList.toggle("move", !!near && !ui.space);
@@ -632,7 +638,7 @@ function pointerEnd(e) {
     const { p } = ui.tap;
     ui.tap = null;
     if (e.type === "pointerup") {
-      addPoint(p);
+      addPoint(placed(p));
       refresh();
     }
   }
@@ -668,6 +674,12 @@ $("closed").addEventListener("change", (e) => {
   refresh();
 });
 $("comb").addEventListener("change", (e) => { ui.comb = e.target.checked; draw(); });
+function setSnap(on) {
+  ui.snap = on;
+  $("snap").checked = on;
+  localStorage.setItem(SNAP_KEY, on ? "1" : "0");
+}
+$("snap").addEventListener("change", (e) => setSnap(e.target.checked));
 $("comb-scale").addEventListener("input", () => draw());
 $("shape").addEventListener("input", (e) => {
   const sel = selection();
@@ -833,7 +845,8 @@ function nudge(dx, dy) {
   if (!sel) return false;
   const p = engine.points(sel.contour)[sel.index];
   engine.setActive(sel.contour);
-  engine.movePoint(sel.index, p.x + dx, p.y + dy);
+  const q = placed({ x: p.x + dx, y: p.y + dy });
+  engine.movePoint(sel.index, q.x, q.y);
   refresh();
   return true;
 }
@@ -871,6 +884,8 @@ document.addEventListener("keydown", (e) => {
     smoothJoin();
   } else if (key === "f") {
     fit();
+  } else if (key === "g") {
+    setSnap(!ui.snap);
   } else if (key === " ") {
     ui.space = true;
     canvas.classList.add("pan");
@@ -949,6 +964,7 @@ window.kappa = {
   selected: () => (ui.sel ? ui.sel.index : -1),
   selection: () => ui.sel,
   setComb(on) { ui.comb = on; $("comb").checked = on; draw(); },
+  setSnap,
   evalCurve: (k, piece, seg, t) => engine.evalCurve(k, piece, seg, t),
   hit: (x, y) => engine.hit(x, y),
   pathElements: () => pathElements(engine.pathData()),
@@ -1027,6 +1043,7 @@ window.kappa = {
 // Start: the drawing and view kept in this browser, if any.
 new ResizeObserver(resize).observe(stage);
 resize();
+setSnap(localStorage.getItem(SNAP_KEY) === "1");
 const kept = localStorage.getItem(STORAGE_KEY);
 if (kept) {
   if (engine.open(kept, false) < 0) localStorage.removeItem(STORAGE_KEY);
