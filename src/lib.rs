@@ -178,6 +178,6 @@ pub use solved::SolvedState;
 pub use space::{SpaceCurve, SpaceOptions};
 pub use spline::{
     svg_path_data, Coords, Scheme, Segment, Shape, SolveOptions, SolveReport, Solver, Solver3,
-    SolverN, Spline, Spline3, EK_TRIG_DEFAULT_SHAPE,
+    SolverN, Spline, Spline3, EK_TRIG_DEFAULT_SHAPE, TRIG_NODE_CUBICS,
 };
 pub use trig::TrigBez;

@@ -40,11 +40,40 @@ impl Editor {
     /// is closed — what an SVG or font outline holds. A piece without a curve leaves a gap
     /// (the next piece starts a new subpath, and the path is not closed).
     pub fn outline(&self) -> BezPath {
+        self.joined(|k| self.piece_bezpath(k))
+    }
+
+    /// [`outline`](Self::outline) with a node at every point and every joint of the curve,
+    /// in a structure fixed by the document's topology: each piece's
+    /// [`Spline::to_node_bezpath`](crate::Spline::to_node_bezpath), and a line for a piece
+    /// of two points (between corners). Two documents with the same number of points,
+    /// the same corners and the same closed flag give paths with the same elements in the
+    /// same order, whatever the positions, shapes and tangents: the outlines of font
+    /// masters drawn from them interpolate.
+    pub fn node_outline(&self) -> BezPath {
+        self.joined(|k| {
+            let Some(s) = self.piece_spline(k) else {
+                return BezPath::new();
+            };
+            let points = self.piece_points(k);
+            if !s.is_closed() && points.len() == 2 {
+                let mut line = BezPath::new();
+                line.move_to(self.doc.points[points[0]].point());
+                line.line_to(self.doc.points[points[1]].point());
+                return line;
+            }
+            s.to_node_bezpath()
+        })
+    }
+
+    /// The pieces' paths (`piece`) joined into one subpath, as [`outline`](Self::outline)
+    /// describes.
+    fn joined(&self, piece: impl Fn(usize) -> BezPath) -> BezPath {
         let mut out = BezPath::new();
         let mut joined = false;
         let mut whole = !self.pieces.is_empty();
         for k in 0..self.pieces.len() {
-            let path = self.piece_bezpath(k);
+            let path = piece(k);
             if path.elements().is_empty() {
                 joined = false;
                 whole = false;
