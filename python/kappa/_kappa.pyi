@@ -8,7 +8,7 @@ DirectionsLike = Optional[Sequence[Optional[Sequence[float]]]]
 ShapeLike = Union[None, float, Sequence[float]]
 Element = Tuple[str, Tuple[XY, ...]]
 SchemeName = Literal["kappa", "ek-cubic", "ek-trig", "ek_cubic", "ek_trig"]
-Nodes = Literal["joints", "anchors"]
+Nodes = Literal["joints", "anchors", "compatible"]
 
 KAPPA_LIB_KEY: str
 

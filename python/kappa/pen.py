@@ -64,8 +64,10 @@ def draw_contours(
     - ``nodes``: "anchors" (the contours' points are the on-curve points; every span
       between two of them is one cubic where that is within ``tolerance / 2``, default
       ``tolerance`` 4e-3 of the contour's size, else cubics within ``accuracy``, default
-      1e-4 of the size) or "joints" (the exact curve: κ quadratics, εκ-cubic cubics,
-      fitted εκ-trig).
+      1e-4 of the size), "joints" (the exact curve: κ quadratics, εκ-cubic cubics,
+      fitted εκ-trig) or "compatible" (nodes at the points and the joints, in a structure
+      fixed by the points, corners and closed flag: masters of the same structure
+      interpolate; see docs/python.md).
     - ``quadratic``: quadratic curves for TrueType: cubics converted by fontTools' cu2qu
       within ``max_err`` font units; with ``nodes="joints"`` a κ contour is drawn with its
       own quadratics, exactly.

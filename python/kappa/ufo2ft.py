@@ -20,7 +20,11 @@ Options (``KappaFilter(nodes="joints")`` on the command line):
 - ``nodes``: "anchors" (default: the κ points are the on-curve nodes, as ``kappa font``
   writes UFO outlines; each span between two of them is one cubic where that cubic is
   within ``tolerance / 2``, else cubics within ``accuracy``) or "joints" (the exact curve,
-  its nodes the joints between segments: κ quadratics, εκ-cubic cubics, εκ-trig fitted).
+  its nodes the joints between segments: κ quadratics, εκ-cubic cubics, εκ-trig fitted)
+  or "compatible" (nodes at the κ points and the joints, in a structure fixed by the
+  number of points, the corners and the closed flag: the masters of a variable font whose
+  κ sources have the same structure give point-compatible outlines; declare it with
+  ``"kwargs": {"nodes": "compatible"}`` in each master's lib).
 - ``accuracy``, ``tolerance``: in em (default 1e-4 and 4e-3, ``kappa font``'s drafting
   tolerance: a span is one cubic where that is within 2 units of a 1000-unit em, else
   cubics within 0.1 units).

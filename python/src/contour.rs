@@ -157,7 +157,7 @@ impl Contour {
         (nodes.path, nodes.max_error)
     }
 
-    /// The outline by node choice: "joints" (exact) or "anchors".
+    /// The outline by node choice: "joints" (exact), "anchors" or "compatible".
     pub fn path_by(
         &self,
         nodes: &str,
@@ -167,8 +167,9 @@ impl Contour {
         match nodes {
             "joints" => Ok(self.outline()),
             "anchors" => Ok(self.anchor_path(accuracy, tolerance).0),
+            "compatible" => Ok(self.editor.node_outline()),
             _ => Err(PyValueError::new_err(format!(
-                "unknown nodes {nodes:?}: expected \"joints\" or \"anchors\""
+                "unknown nodes {nodes:?}: expected \"joints\", \"anchors\" or \"compatible\""
             ))),
         }
     }
@@ -385,6 +386,11 @@ impl Contour {
     ///   between two of them one cubic where that is within `tolerance / 2` (default
     ///   `tolerance` 4e-3 of the contour's size), else cubics within `accuracy` (default
     ///   1e-4 of the size). Closed contours only; open ones give joints.
+    /// - `nodes="compatible"`: on-curve points at the contour's points and at the joints,
+    ///   in a structure that depends only on the number of points, the corners and the
+    ///   closed flag (two parts per segment, a line between two corners; κ quadratics and
+    ///   εκ-cubic cubics exact, εκ-trig two Hermite cubics per part), so that contours of
+    ///   the same structure in several masters interpolate.
     #[pyo3(signature = (nodes = "joints", accuracy = None, tolerance = None))]
     fn elements(
         &self,
