@@ -12,6 +12,7 @@ from ._kappa import (
     CollinearError,
     Contour,
     Curve,
+    DraftedGlyph,
     ExtentOverflowError,
     FontError,
     GammaOutOfRangeError,
@@ -36,6 +37,8 @@ from ._kappa import (
     builtin_design,
     builtin_designs,
     contours_from_json,
+    contours_from_svg,
+    draft_elements,
     glyph_elements,
     hermite,
     solve,
@@ -47,6 +50,7 @@ __all__ = [
     "CollinearError",
     "Contour",
     "Curve",
+    "DraftedGlyph",
     "ExtentOverflowError",
     "FontError",
     "GammaOutOfRangeError",
@@ -71,9 +75,14 @@ __all__ = [
     "builtin_design",
     "builtin_designs",
     "contours_from_json",
+    "contours_from_svg",
+    "draft_elements",
+    "draft_glyph",
     "glyph_elements",
     "hermite",
     "solve",
 ]
+
+from .pen import draft_glyph  # noqa: E402  (fontTools is imported when it is called)
 
 __version__ = "0.1.0"

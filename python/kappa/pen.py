@@ -1,6 +1,6 @@
 """Drawing κ contours into fontTools pens.
 
-``draw_contours`` draws solved contours (``kappa.Contour``) as one glyph into any fontTools
+``draft_glyph`` drafts κ contours from a fontTools glyph. ``draw_contours`` draws solved contours (``kappa.Contour``) as one glyph into any fontTools
 segment pen (``moveTo``/``curveTo``/...) or point pen (``beginPath``/``addPoint``/...),
 with the contour direction a font format wants and, for TrueType, quadratic curves (κ
 quadratics exactly; cubics through fontTools' cu2qu). ``KappaPen`` collects contours anchor
@@ -13,11 +13,11 @@ from __future__ import annotations
 
 from typing import Any, Iterable, Optional, Sequence, Tuple
 
-from ._kappa import Contour, glyph_elements
+from ._kappa import Contour, DraftedGlyph, draft_elements, glyph_elements
 
 Point = Tuple[float, float]
 
-__all__ = ["KappaPen", "draw_contours", "replay"]
+__all__ = ["KappaPen", "draft_glyph", "draw_contours", "replay"]
 
 
 def _is_point_pen(pen: Any) -> bool:
@@ -186,3 +186,83 @@ class KappaPen:
             raise ValueError("draw: a contour was begun and not ended")
         draw_contours(self.contours, self.outPen if pen is None else pen, **self.options)
 
+
+def _one_bezier_elements(draw: Any, glyph_set: Any) -> list:
+    """The outline ``draw(pen)`` draws, as elements of one Bézier each: TrueType runs of
+    implied on-curve points and contours without on-curve points are split by fontTools'
+    BasePen; components are drawn from ``glyph_set``."""
+    from fontTools.pens.basePen import BasePen
+
+    class _Elements(BasePen):
+        def __init__(self) -> None:
+            super().__init__(glyph_set)
+            self.value: list = []
+
+        def _moveTo(self, pt):
+            self.value.append(("moveTo", (pt,)))
+
+        def _lineTo(self, pt):
+            self.value.append(("lineTo", (pt,)))
+
+        def _curveToOne(self, p1, p2, p3):
+            self.value.append(("curveTo", (p1, p2, p3)))
+
+        def _qCurveToOne(self, p1, p2):
+            self.value.append(("qCurveTo", (p1, p2)))
+
+        def _closePath(self):
+            self.value.append(("closePath", ()))
+
+        def _endPath(self):
+            self.value.append(("endPath", ()))
+
+    pen = _Elements()
+    draw(pen)
+    return pen.value
+
+
+def draft_glyph(
+    glyph: Any,
+    glyph_set: Any = None,
+    *,
+    units_per_em: float = 1000.0,
+    scheme: str = "kappa",
+    shape: Any = None,
+    tolerance: Optional[float] = None,
+    fair: bool = False,
+    simplify: bool = False,
+    extremum_tangents: bool = True,
+) -> DraftedGlyph:
+    """Drafts κ contours from a glyph, as ``kappa font`` drafts each glyph.
+
+    ``glyph`` is anything with ``draw(pen)`` (a fontTools glyph-set glyph, a ufoLib2 or
+    defcon glyph) or a list of elements in RecordingPen form; components are decomposed
+    through ``glyph_set`` (e.g. ``TTFont.getGlyphSet()`` or a ufoLib2 font). The result
+    holds one ``Contour`` per closed subpath (``contours``), ``hausdorff`` (the largest
+    distance of a drafted piece from the original, font units), ``within_tolerance``,
+    ``fallbacks``, and ``to_json()``: the κ source to keep under ``KAPPA_LIB_KEY``.
+
+    - ``units_per_em`` scales the defaults: ``tolerance`` 0.004 em, anchors at least
+      0.06 em apart.
+    - ``scheme`` and ``shape``: for the εκ schemes None (neutral), a number, or "auto"
+      (per anchor, matching the original's curvature peak).
+    - ``fair``, ``simplify``: mend spurious inflections; drop anchors not needed.
+    - ``extremum_tangents``: hold horizontal and vertical tangents at extremum anchors.
+    """
+    if hasattr(glyph, "draw"):
+        draw = glyph.draw
+    else:
+
+        def draw(pen):
+            replay(glyph, pen)
+
+    return draft_elements(
+        _one_bezier_elements(draw, glyph_set),
+        units_per_em,
+        scheme,
+        shape,
+        tolerance,
+        fair,
+        simplify,
+        extremum_tangents,
+    )

@@ -182,3 +182,29 @@ impl<T> IntoPy<T> for Result<T, kappa::Error> {
         self.map_err(to_py)
     }
 }
+
+/// Raises the exception of a library error kind the Python API cannot reach (the κ-space,
+/// fitting, font-file and tessellation kinds), built from sample fields, so that tests can
+/// check the mapping of every kind: `kind` is the exception's name. Not part of the API.
+#[pyfunction]
+pub fn _raise_error_kind(kind: &str) -> PyResult<()> {
+    use kappa::Error as E;
+    let e = match kind {
+        "GammaOutOfRangeError" => E::GammaOutOfRange {
+            joint: 2,
+            value: 0.9,
+            min: 0.25,
+            max: 0.75,
+        },
+        "NonFiniteCurveError" => E::NonFiniteCurve { segment: 3 },
+        "FontError" => E::Font("cannot read the font: bad magic".into()),
+        "MissingGlyphError" => E::MissingGlyph { ch: 'ß' },
+        "TessellationError" => E::Tessellation("too many vertices".into()),
+        _ => {
+            return Err(pyo3::exceptions::PyValueError::new_err(format!(
+                "no sample for {kind:?}"
+            )))
+        }
+    };
+    Err(to_py(e))
+}

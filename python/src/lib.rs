@@ -6,6 +6,7 @@
 
 mod contour;
 mod curve;
+mod draft;
 mod errors;
 mod extra;
 mod points;
@@ -34,10 +35,14 @@ fn _kappa(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<contour::Contour>()?;
     m.add_class::<extra::PyBSpline>()?;
     m.add_class::<extra::IntrinsicSegment>()?;
+    m.add_class::<draft::Drafted>()?;
     m.add_function(wrap_pyfunction!(curve::solve, m)?)?;
     m.add_function(wrap_pyfunction!(contour::contours_from_json, m)?)?;
     m.add_function(wrap_pyfunction!(contour::glyph_elements, m)?)?;
+    m.add_function(wrap_pyfunction!(draft::draft_elements, m)?)?;
+    m.add_function(wrap_pyfunction!(draft::contours_from_svg, m)?)?;
     m.add_function(wrap_pyfunction!(extra::hermite, m)?)?;
+    m.add_function(wrap_pyfunction!(errors::_raise_error_kind, m)?)?;
     m.add_function(wrap_pyfunction!(builtin_designs, m)?)?;
     m.add_function(wrap_pyfunction!(builtin_design, m)?)?;
     m.add("KAPPA_LIB_KEY", "org.kappa.contours")?;

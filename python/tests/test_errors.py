@@ -99,6 +99,54 @@ def test_invalid_input():
         kappa.Contour.from_json("not json")
 
 
+def test_invalid_svg():
+    with pytest.raises(kappa.InvalidSvgError) as e:
+        kappa.contours_from_svg("<svg><path d='M0 0 L1 1'/>")
+    assert str(e.value).startswith("invalid SVG: ")
+
+
+def test_invalid_option_of_a_draft():
+    with pytest.raises(kappa.InvalidOptionError):
+        kappa.draft_elements([("moveTo", ((0, 0),)), ("lineTo", ((9, 0),)), ("closePath", ())], 0.0)
+    with pytest.raises(kappa.InvalidOptionError):
+        kappa.draft_elements([("moveTo", ((0, 0),))], 1000.0, tolerance=-1.0)
+
+
+#: The kinds no Python call reaches (κ-space curves, the fitting adapter, font files and
+#: tessellation are not exposed), raised from sample fields through the same mapping.
+UNREACHABLE = {
+    "GammaOutOfRangeError": ("gamma of joint 2 is 0.9, outside (0.25, 0.75)",
+                             {"joint": 2, "value": 0.9, "min": 0.25, "max": 0.75}),
+    "NonFiniteCurveError": ("segment 3 of the curve to fit is not finite", {"segment": 3}),
+    "FontError": ("font: cannot read the font: bad magic", {}),
+    "MissingGlyphError": ("the font has no glyph for 'ß'", {"char": "ß"}),
+    "TessellationError": ("tessellation failed: too many vertices", {}),
+}
+
+
+@pytest.mark.parametrize("kind", sorted(UNREACHABLE))
+def test_kinds_python_cannot_reach(kind):
+    from kappa import _kappa
+
+    message, attrs = UNREACHABLE[kind]
+    with pytest.raises(getattr(kappa, kind)) as e:
+        _kappa._raise_error_kind(kind)
+    assert str(e.value) == message
+    for name, value in attrs.items():
+        assert getattr(e.value, name) == value
+    assert isinstance(e.value, kappa.KappaError)
+
+
+def test_every_kind_is_tested():
+    # Each kind either has a call that raises it in this file or a sample above.
+    import inspect
+    import sys
+
+    text = inspect.getsource(sys.modules[__name__])
+    for name in KINDS:
+        assert name in UNREACHABLE or text.count(f"kappa.{name}") >= 1, name
+
+
 def test_no_hermite_solution():
     # A straight chord with both tangents turned 90° the same way and a clothoid profile
     # given a curvature it cannot have.

@@ -7,10 +7,9 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::Args;
-use kappa::editor::{EditPoint, PathDoc};
 use kappa::glyph::{
-    anchor_outline, draft, drawn_glyph_ids, hausdorff, rebuild_ttf, rebuild_ufo, AnchorKind,
-    DraftOptions, DraftShape, DraftedGlyph, FontOutlines, NodeOutline, RebuildOptions,
+    anchor_outline, draft, drawn_glyph_ids, hausdorff, rebuild_ttf, rebuild_ufo, DraftOptions,
+    DraftShape, DraftedGlyph, FontOutlines, NodeOutline, RebuildOptions,
 };
 use kappa::Scheme;
 use kurbo::BezPath;
@@ -334,48 +333,8 @@ fn map_glyphs<T: Send>(ids: &[u16], f: impl Fn(u16) -> T + Sync) -> Vec<T> {
     }
 }
 
-/// The κ source of a drafted glyph: one path-tool document ([`PathDoc`]) per contour,
-/// its anchors in order with their shapes, piece ends as corners; as JSON.
+/// The κ source of a drafted glyph ([`DraftedGlyph::path_docs`]), as JSON.
 fn kappa_source(drafted: &DraftedGlyph, scheme: Scheme) -> Result<String> {
-    let docs: Vec<PathDoc> = drafted
-        .contours
-        .iter()
-        .map(|c| {
-            let mut points: Vec<EditPoint> = Vec::new();
-            let single = matches!(c.pieces.as_slice(), [p] if p.closed);
-            let tangent = |a: &kappa::glyph::Anchor| a.tangent.map(|v| [v.x, v.y]);
-            // The direction in which the previous piece arrives at the next corner.
-            let mut arriving = None;
-            for p in &c.pieces {
-                let take = if single {
-                    p.anchors.len()
-                } else {
-                    p.anchors.len().saturating_sub(1)
-                };
-                for (k, a) in p.anchors.iter().take(take).enumerate() {
-                    let corner = !single && (k == 0 || a.kind == AnchorKind::Corner);
-                    points.push(EditPoint {
-                        x: a.point.x,
-                        y: a.point.y,
-                        shape: a.a,
-                        corner,
-                        tangent: tangent(a),
-                        tangent_in: if k == 0 { arriving.take() } else { None },
-                    });
-                }
-                arriving = p.anchors.last().and_then(tangent);
-            }
-            // The last piece arrives at the first corner.
-            if let (false, Some(first)) = (single, points.first_mut()) {
-                first.tangent_in = arriving;
-            }
-            PathDoc {
-                points,
-                closed: true,
-                scheme,
-                solution: Vec::new(),
-            }
-        })
-        .collect();
-    serde_json::to_string(&docs).map_err(|e| Failure::new(format!("cannot write JSON: {e}")))
+    serde_json::to_string(&drafted.path_docs(scheme))
+        .map_err(|e| Failure::new(format!("cannot write JSON: {e}")))
 }

@@ -133,3 +133,57 @@ impl DraftedGlyph {
         self.pieces().filter(|p| p.fallback).count()
     }
 }
+
+#[cfg(feature = "serde")]
+impl DraftedGlyph {
+    /// The glyph's κ source: one path-tool document ([`PathDoc`](crate::editor::PathDoc))
+    /// per contour, closed, its anchors in order with their shapes and tangents. The ends of
+    /// the pieces are corners, and the tangent with which a piece arrives at its last anchor
+    /// becomes that corner's incoming tangent. A contour drafted as one closed piece has no
+    /// corner.
+    ///
+    /// This is what `kappa font` writes under the UFO lib key `org.kappa.contours` (as
+    /// JSON), and what the editor and the Python filter solve back into the outline.
+    pub fn path_docs(&self, scheme: crate::Scheme) -> Vec<crate::editor::PathDoc> {
+        use crate::editor::{EditPoint, PathDoc};
+        self.contours
+            .iter()
+            .map(|c| {
+                let mut points: Vec<EditPoint> = Vec::new();
+                let single = matches!(c.pieces.as_slice(), [p] if p.closed);
+                let tangent = |a: &Anchor| a.tangent.map(|v| [v.x, v.y]);
+                // The direction in which the previous piece arrives at the next corner.
+                let mut arriving = None;
+                for p in &c.pieces {
+                    let take = if single {
+                        p.anchors.len()
+                    } else {
+                        p.anchors.len().saturating_sub(1)
+                    };
+                    for (k, a) in p.anchors.iter().take(take).enumerate() {
+                        let corner = !single && (k == 0 || a.kind == AnchorKind::Corner);
+                        points.push(EditPoint {
+                            x: a.point.x,
+                            y: a.point.y,
+                            shape: a.a,
+                            corner,
+                            tangent: tangent(a),
+                            tangent_in: if k == 0 { arriving.take() } else { None },
+                        });
+                    }
+                    arriving = p.anchors.last().and_then(tangent);
+                }
+                // The last piece arrives at the first corner.
+                if let (false, Some(first)) = (single, points.first_mut()) {
+                    first.tangent_in = arriving;
+                }
+                PathDoc {
+                    points,
+                    closed: true,
+                    scheme,
+                    solution: Vec::new(),
+                }
+            })
+            .collect()
+    }
+}
