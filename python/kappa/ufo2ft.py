@@ -36,6 +36,8 @@ The filter runs before ufo2ft's own filters (decomposition, overlap removal, cu2
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 from ufo2ft.filters import BaseFilter
 
 from ._kappa import KAPPA_LIB_KEY, KappaError, contours_from_json, glyph_elements
@@ -47,6 +49,23 @@ __all__ = ["KappaFilter", "KAPPA_LIB_KEY"]
 DEFAULT_ACCURACY = 1e-4
 #: Anchor-node tolerance: a span is one cubic where that is within half of it, in em.
 DEFAULT_TOLERANCE = 4e-3
+
+
+@lru_cache(maxsize=4096)
+def _outline(source: str, nodes: str, accuracy: float, tolerance: float, accept: bool) -> tuple:
+    """The computed outline of a κ source, cached: fontmake runs the filter once per output
+    format (``-o ttf otf``) on the same sources."""
+    contours = contours_from_json(source)
+    return tuple(
+        glyph_elements(
+            contours,
+            direction="postscript",
+            nodes=nodes,
+            accuracy=accuracy,
+            tolerance=tolerance,
+            accept_unconverged=accept,
+        )
+    )
 
 
 class KappaFilter(BaseFilter):
@@ -72,14 +91,12 @@ class KappaFilter(BaseFilter):
         if not source:
             return False
         try:
-            contours = contours_from_json(source)
-            elements = glyph_elements(
-                contours,
-                direction="postscript",
-                nodes=self.options.nodes,
-                accuracy=self.context.accuracy,
-                tolerance=self.context.tolerance,
-                accept_unconverged=bool(self.options.acceptUnconverged),
+            elements = _outline(
+                source,
+                self.options.nodes,
+                self.context.accuracy,
+                self.context.tolerance,
+                bool(self.options.acceptUnconverged),
             )
         except KappaError as e:
             raise type(e)(f"glyph {glyph.name!r}: {e}") from e
