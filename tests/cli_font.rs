@@ -372,3 +372,47 @@ fn a_source_without_os2_gets_one() {
     assert_eq!(u32::from(os2.us_first_char_index()), first);
     std::fs::write(font_check().join("no-os2-kappa.ttf"), &bytes).unwrap();
 }
+
+/// The alphabet the font-quality targets are measured on.
+const ALPHABET: &str = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789&@ß";
+
+/// A TrueType and a CFF font's alphabet drafted with the defaults and written both ways, for
+/// the quality check `.ci/run` runs on them (`tests/check_font_quality.py`: extremum nodes,
+/// missing extrema, short segments, fidelity, measured independently of kappa). Here: every
+/// glyph drafted, none a fallback, and each written outline within 0.004 em of the source
+/// by kappa's own report (`written_hausdorff`; a few Garamond drafts miss the tighter
+/// tolerance they are held to for TrueType output, docs/glyphs.md).
+#[test]
+fn the_alphabet_is_drafted_for_the_quality_check() {
+    let dir = font_check().join("alphabet");
+    std::fs::create_dir_all(&dir).unwrap();
+    let garamond =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fonts/EBGaramond12-Regular-subset.otf");
+    for (name, src) in [("dejavu", dejavu()), ("garamond", garamond)] {
+        let (ttf, ufo) = (
+            dir.join(format!("{name}.ttf")),
+            dir.join(format!("{name}.ufo")),
+        );
+        let report = font(&[
+            "font",
+            "--font",
+            src.to_str().unwrap(),
+            "--chars",
+            ALPHABET,
+            "--out",
+            ttf.to_str().unwrap(),
+            "--out",
+            ufo.to_str().unwrap(),
+        ]);
+        let glyphs = report["glyphs"].as_array().unwrap();
+        assert_eq!(glyphs.len(), ALPHABET.chars().count(), "{name}");
+        let em = report["units_per_em"].as_f64().unwrap();
+        for g in glyphs {
+            assert_eq!(g["fallback"], false, "{name}: {g}");
+            assert!(
+                g["written_hausdorff"].as_f64().unwrap() <= 0.004 * em,
+                "{name}: {g}"
+            );
+        }
+    }
+}

@@ -877,9 +877,25 @@ fn anchor_outline_puts_nodes_at_the_anchors() {
             );
             let extra = on.len() - drafted.anchor_count();
             assert!(
-                extra <= drafted.contours.len() + 2 * nodes.split_spans,
+                extra <= drafted.contours.len() + 2 * nodes.split_spans + nodes.extrema_added,
                 "{scheme:?} {ch}: {extra} extra nodes"
             );
+            // No curve passes an extremum between its nodes by more than 5 × the accuracy
+            // (1 unit here), unless cutting it there would leave a part shorter than 20 ×.
+            for seg in nodes.path.segments() {
+                use kurbo::{ParamCurve, ParamCurveExtrema};
+                let (p0, p1) = (seg.start(), seg.end());
+                for t in seg.extrema() {
+                    let p = seg.eval(t);
+                    let over = |v: f64, a: f64, b: f64| (a.min(b) - v).max(v - a.max(b));
+                    let bulge = over(p.x, p0.x, p1.x).max(over(p.y, p0.y, p1.y));
+                    let short = (p - p0).hypot().min((p1 - p).hypot()) < 20.0 * 0.2;
+                    assert!(
+                        bulge <= 1.0 || short,
+                        "{scheme:?} {ch}: bulge {bulge} at {p:?}"
+                    );
+                }
+            }
             assert!(
                 nodes.max_error <= options.tolerance,
                 "{scheme:?} {ch}: {}",

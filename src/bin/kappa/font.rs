@@ -42,7 +42,8 @@ const HAUSDORFF_SAMPLES: usize = 32;
         The written on-curve points are the anchors: each span between two anchors is one \
         cubic, fitted where it is not one Bézier already ('nodes_error' in the report), and \
         the tangent at an anchor on an extremum of the original is set horizontal or \
-        vertical where that keeps the curve within the tolerance ('snapped').\n\n\
+        vertical where that keeps the curve within the tolerance ('snapped'); a curve that \
+        passes a horizontal or vertical extremum between two nodes gets a node there.\n\n\
         The new font's family is --family (default \"Kappa Draft\"): a modified font may not \
         use its source's Reserved Font Names.\n\n\
         Output (stdout), one JSON object on one line: {\"font\": file, \"units_per_em\": u, \
