@@ -92,8 +92,11 @@ pub(super) enum Resolve {
 /// iteration, so 6–7 ms per update.
 pub const DRAG_WORK: usize = 15_000;
 
-/// Fewest iterations a drag update's solve may take, however long the piece.
-const DRAG_MIN_ITERATIONS: usize = 20;
+/// Fewest iterations a drag update's solve may take, however long the piece: enough for a
+/// warm solve to follow a small move (a few iterations) while a cap set by the caller
+/// ([`Editor::set_drag_work`]) still holds for pieces of hundreds of points (at 20, the
+/// web page's cap did not apply below 200 points per piece).
+const DRAG_MIN_ITERATIONS: usize = 10;
 
 /// The options of the pieces' solvers: the best curve is returned when a solve does not
 /// converge (the editor draws it, flagged).
