@@ -310,24 +310,10 @@ fn snap_extrema(
         };
         // One node for both curves (their ends may differ in the last bits).
         let node = after.p0;
-        let new_after = CubicBez::new(node, node + dir * h_out.hypot(), after.p2, after.p3);
-        let new_before = CubicBez::new(before.p0, before.p1, node - dir * h_in.hypot(), node);
-        // Each side: its handle turned (lengths kept), else both its handle lengths fitted
-        // to the curve with the new direction at the node.
-        let side = |turned: CubicBez, old: &CubicBez, k: usize, at_start: bool| {
-            let accept = |c: CubicBez| budget.accept(&c, k, curves, sources).map(|d| (c, d));
-            accept(turned).or_else(|| {
-                let (d0, d1) = if at_start {
-                    (dir, (old.p2 - old.p3).normalize())
-                } else {
-                    ((old.p1 - old.p0).normalize(), -dir)
-                };
-                fit_handle_lengths(old, d0, d1).and_then(accept)
-            })
-        };
+        let before = CubicBez { p3: node, ..before };
         if let (Some((a, da)), Some((b, db))) = (
-            side(new_after, &after, i, true),
-            side(new_before, &before, prev, false),
+            budget.turn_or_refit(&after, i, Some(dir), None, curves, sources),
+            budget.turn_or_refit(&before, prev, None, Some(-dir), curves, sources),
         ) {
             curves[prev].0 = PathSeg::Cubic(b);
             curves[i].0 = PathSeg::Cubic(a);
@@ -391,14 +377,9 @@ fn smooth_line_joins(
         if let (PathSeg::Line(l), PathSeg::Cubic(c)) = (curves[i].0, curves[next].0) {
             let dir = l.p1 - l.p0;
             let h = c.p1 - c.p0;
-            if let Some(len) = turn_within(dir, h) {
+            if turn_within(dir, h).is_some() {
                 let u = dir / dir.hypot();
-                let fixed = CubicBez::new(c.p0, c.p0 + u * len, c.p2, c.p3);
-                let refit = || fit_handle_lengths(&c, u, (c.p2 - c.p3).normalize());
-                let within = |c: &CubicBez, k: usize| budget.accept(c, k, curves, sources);
-                if let Some((f, d)) = within(&fixed, next)
-                    .map(|d| (fixed, d))
-                    .or_else(|| refit().and_then(|f| within(&f, next).map(|d| (f, d))))
+                if let Some((f, d)) = budget.turn_or_refit(&c, next, Some(u), None, curves, sources)
                 {
                     curves[next].0 = PathSeg::Cubic(f);
                     out.max_error = out.max_error.max(d);
@@ -409,15 +390,9 @@ fn smooth_line_joins(
         if let (PathSeg::Cubic(c), PathSeg::Line(l)) = (curves[i].0, curves[next].0) {
             let dir = l.p1 - l.p0;
             let h = c.p3 - c.p2;
-            if let Some(len) = turn_within(dir, h) {
+            if turn_within(dir, h).is_some() {
                 let u = dir / dir.hypot();
-                let fixed = CubicBez::new(c.p0, c.p1, c.p3 - u * len, c.p3);
-                let refit = || fit_handle_lengths(&c, (c.p1 - c.p0).normalize(), -u);
-                let within = |c: &CubicBez, k: usize| budget.accept(c, k, curves, sources);
-                if let Some((f, d)) = within(&fixed, i)
-                    .map(|d| (fixed, d))
-                    .or_else(|| refit().and_then(|f| within(&f, i).map(|d| (f, d))))
-                {
+                if let Some((f, d)) = budget.turn_or_refit(&c, i, None, Some(-u), curves, sources) {
                     curves[i].0 = PathSeg::Cubic(f);
                     out.max_error = out.max_error.max(d);
                 }
@@ -471,6 +446,34 @@ impl Budget<'_> {
         } else {
             None
         }
+    }
+
+    /// Curve `k` (`old`) with its start handle along the unit vector `start` and/or its end
+    /// handle along `end` (`p2 = p3 + L·end`), if [`Budget::accept`] takes it: first with the
+    /// handles' lengths kept, else with both lengths refitted ([`fit_handle_lengths`]). The
+    /// changed curve and its distance from the draft.
+    fn turn_or_refit(
+        &self,
+        old: &CubicBez,
+        k: usize,
+        start: Option<Vec2>,
+        end: Option<Vec2>,
+        curves: &[(PathSeg, bool)],
+        sources: &[Option<SpanSource>],
+    ) -> Option<(CubicBez, f64)> {
+        let mut turned = *old;
+        if let Some(d) = start {
+            turned.p1 = old.p0 + d * (old.p1 - old.p0).hypot();
+        }
+        if let Some(d) = end {
+            turned.p2 = old.p3 + d * (old.p2 - old.p3).hypot();
+        }
+        let accept = |c: CubicBez| self.accept(&c, k, curves, sources).map(|d| (c, d));
+        accept(turned).or_else(|| {
+            let d0 = start.unwrap_or_else(|| (old.p1 - old.p0).normalize());
+            let d1 = end.unwrap_or_else(|| (old.p2 - old.p3).normalize());
+            fit_handle_lengths(old, d0, d1).and_then(accept)
+        })
     }
 
     /// Whether the original outline passes through `p` (within 1e-6 of the tolerance) with a
