@@ -123,14 +123,7 @@ impl Drafter<'_> {
             }
             // None: no anchor set tried could be solved; the piece stays as it is, and
             // `within_tolerance` tells.
-            let Some((more, next, n)) = self.refine(
-                segs,
-                closed,
-                &anchors,
-                &spans,
-                budget,
-                solved.state.as_ref(),
-            ) else {
+            let Some((more, next, n)) = self.refine(segs, closed, &anchors, &spans, budget) else {
                 break;
             };
             anchors = more;
@@ -146,14 +139,7 @@ impl Drafter<'_> {
             }
         }
         if opts.extremum_tangents {
-            let held = self.with_extremum_tangents(
-                segs,
-                closed,
-                &anchors,
-                &original,
-                k,
-                solved.state.as_ref(),
-            );
+            let held = self.with_extremum_tangents(segs, closed, &anchors, &original, k);
             if let Some((more, held)) = held {
                 anchors = more;
                 solved = held;
@@ -184,7 +170,6 @@ mod tests {
                 ..crate::SolveOptions::default()
             }),
             tangents: Vec::new(),
-            seed: None,
         };
         let pieces = drafter.piece_or_parts(segs, true, 0);
         let mut at = segs[0].start();
