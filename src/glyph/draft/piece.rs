@@ -123,7 +123,14 @@ impl Drafter<'_> {
             }
             // None: no anchor set tried could be solved; the piece stays as it is, and
             // `within_tolerance` tells.
-            let Some((more, next, n)) = self.refine(segs, closed, &anchors, &spans, budget) else {
+            let Some((more, next, n)) = self.refine(
+                segs,
+                closed,
+                &anchors,
+                &spans,
+                budget,
+                solved.state.as_ref(),
+            ) else {
                 break;
             };
             anchors = more;
@@ -139,7 +146,14 @@ impl Drafter<'_> {
             }
         }
         if opts.extremum_tangents {
-            let held = self.with_extremum_tangents(segs, closed, &anchors, &original, k);
+            let held = self.with_extremum_tangents(
+                segs,
+                closed,
+                &anchors,
+                &original,
+                k,
+                solved.state.as_ref(),
+            );
             if let Some((more, held)) = held {
                 anchors = more;
                 solved = held;
@@ -170,6 +184,7 @@ mod tests {
                 ..crate::SolveOptions::default()
             }),
             tangents: Vec::new(),
+            seed: None,
         };
         let pieces = drafter.piece_or_parts(segs, true, 0);
         let mut at = segs[0].start();

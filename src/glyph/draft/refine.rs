@@ -5,6 +5,7 @@ use kurbo::{ParamCurve, PathSeg, Point};
 
 use super::distance::Target;
 use super::{eval_at, AnchorKind, Cand, Drafter, Solved};
+use crate::SolvedState;
 
 /// Anchor sets a refinement round tries before it gives up (each a solve; see
 /// [`Piece::within_tolerance`](super::Piece::within_tolerance)).
@@ -72,6 +73,7 @@ impl Drafter<'_> {
         anchors: &[Cand],
         spans: &[Option<(f64, f64)>],
         budget: usize,
+        from: Option<&SolvedState>,
     ) -> Option<(Vec<Cand>, Solved, usize)> {
         let (order, picked) = pick_spans(spans, closed, budget);
         let first: Vec<f64> = picked
@@ -97,18 +99,31 @@ impl Drafter<'_> {
             }
         }
         attempts.truncate(REFINE_ATTEMPTS);
-        for places in attempts {
-            if places.is_empty() {
+        attempts.retain(|places| !places.is_empty());
+        let sets: Vec<Vec<Cand>> = attempts
+            .iter()
+            .map(|places| {
+                let mut more = anchors.to_vec();
+                more.extend(places.iter().map(|&s| Cand {
+                    s,
+                    kind: AnchorKind::Refined,
+                }));
+                more.sort_by(|a, b| a.s.total_cmp(&b.s));
+                more
+            })
+            .collect();
+        // Each set started from the last solution first, then from scratch.
+        for warm in [true, false] {
+            if warm && from.is_none() {
                 continue;
             }
-            let mut more = anchors.to_vec();
-            more.extend(places.iter().map(|&s| Cand {
-                s,
-                kind: AnchorKind::Refined,
-            }));
-            more.sort_by(|a, b| a.s.total_cmp(&b.s));
-            if let Ok(solved) = self.solve(segs, closed, &more) {
-                return Some((more, solved, places.len()));
+            for (more, places) in sets.iter().zip(&attempts) {
+                self.seed = from
+                    .filter(|_| warm)
+                    .map(|st| seeded(st, segs, closed, anchors, more));
+                if let Ok(solved) = self.solve(segs, closed, more) {
+                    return Some((more.clone(), solved, places.len()));
+                }
             }
         }
         None
@@ -156,6 +171,67 @@ impl Drafter<'_> {
         }
         worst
     }
+}
+
+/// A start for the solve through `more`, a refinement of `anchors` whose solution is
+/// `state`: the unknowns of every kept anchor as they were, and for each added one a
+/// straight start at its point (`c = p`, `λ = t = 1/2`). An open curve's last ratio stays 1.
+pub(super) fn seeded(
+    state: &SolvedState,
+    segs: &[PathSeg],
+    closed: bool,
+    anchors: &[Cand],
+    more: &[Cand],
+) -> SolvedState {
+    let block = |k: usize| if closed { Some(k) } else { k.checked_sub(1) };
+    let blocks = if closed {
+        more.len()
+    } else {
+        more.len().saturating_sub(2)
+    };
+    let mut out = SolvedState {
+        controls: Vec::with_capacity(2 * blocks),
+        ratios: Vec::with_capacity(blocks),
+        peaks: Vec::with_capacity(blocks),
+    };
+    let mut old = 0;
+    for (k, c) in more.iter().enumerate() {
+        if block(k).map_or(true, |b| b >= blocks) {
+            if anchors.get(old).is_some_and(|a| a.s == c.s) {
+                old += 1;
+            }
+            continue;
+        }
+        let kept = anchors.get(old).is_some_and(|a| a.s == c.s);
+        match block(old).filter(|&b| kept && b < state.ratios.len()) {
+            Some(b) => {
+                out.controls
+                    .extend_from_slice(&state.controls[2 * b..2 * b + 2]);
+                out.ratios.push(state.ratios[b]);
+                out.peaks.push(state.peaks[b]);
+            }
+            None => {
+                let p = eval_at(segs, c.s);
+                out.controls.extend([p.x, p.y]);
+                out.ratios.push(0.5);
+                out.peaks.push(0.5);
+            }
+        }
+        if kept {
+            old += 1;
+        }
+    }
+    if !closed {
+        let last = out.ratios.len().saturating_sub(1);
+        for (i, r) in out.ratios.iter_mut().enumerate() {
+            if i == last {
+                *r = 1.0;
+            } else if *r >= 1.0 {
+                *r = 0.5;
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]

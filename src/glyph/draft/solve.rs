@@ -6,6 +6,9 @@ use super::{abs_curvature_at, eval_at, Anchor, AnchorKind, Cand, DraftShape, Dra
 use crate::fit::{FitMethod, FitOptions, FitTolerance};
 use crate::{Error, Scheme, Shape, Spline};
 
+/// The iteration budget of a solve started from a seed ([`Drafter::seed`]).
+const SEEDED_ITERATIONS: usize = 400;
+
 impl Drafter<'_> {
     /// Solves a piece through the anchors with the options' scheme and shape; returns the
     /// spline, its points and the original's |κ| at each.
@@ -43,6 +46,7 @@ impl Drafter<'_> {
             targets,
             path,
             tangents: self.tangents.clone(),
+            state: self.solver.state(),
         })
     }
 
@@ -55,12 +59,32 @@ impl Drafter<'_> {
         shape: &Shape,
     ) -> Result<Spline, Error> {
         let scheme = self.options.scheme;
-        if self.tangents.is_empty() {
-            self.solver.solve(points, closed, scheme, shape)
-        } else {
-            self.solver
-                .solve_with_tangents(points, closed, scheme, shape, &self.tangents)
+        let seed = self.seed.take();
+        let options = self.solver.options();
+        if seed.is_some() {
+            self.solver.set_options(crate::SolveOptions {
+                max_iterations: options.max_iterations.min(SEEDED_ITERATIONS),
+                ..options
+            });
         }
+        let r = match (&seed, self.tangents.is_empty()) {
+            (None, true) => self.solver.solve(points, closed, scheme, shape),
+            (None, false) => {
+                self.solver
+                    .solve_with_tangents(points, closed, scheme, shape, &self.tangents)
+            }
+            (Some(seed), true) => self.solver.solve_from(points, closed, scheme, shape, seed),
+            (Some(seed), false) => self.solver.solve_with_tangents_from(
+                points,
+                closed,
+                scheme,
+                shape,
+                &self.tangents,
+                seed,
+            ),
+        };
+        self.solver.set_options(options);
+        r
     }
 }
 

@@ -4,7 +4,9 @@
 use kurbo::{ParamCurve, PathSeg, Vec2};
 
 use super::distance::{within, Target};
+use super::refine::seeded;
 use super::{locate, AnchorKind, Cand, Drafter, Solved};
+use crate::SolvedState;
 
 /// The original's unit tangent at `s` (a position along `segs`, as
 /// [`eval_at`](super::eval_at) takes it), in its direction of travel: the direction of a
@@ -124,7 +126,8 @@ impl Drafter<'_> {
     /// with two anchors flanking its point ([`flanked`]), kept if that holds it. On the
     /// alphabets of EB Garamond and DejaVu Sans (κ) the flanks took the source's extremum
     /// nodes kept from 736 to 800 of 1 129 and from 279 to 283 of 288, at 7 % more anchors.
-    /// `None` where none can be held.
+    /// Each solve starts from the last one that held (the free curve `free` at first), with
+    /// flanking anchors seeded in ([`seeded`]). `None` where none can be held.
     pub(super) fn with_extremum_tangents(
         &mut self,
         segs: &[PathSeg],
@@ -132,6 +135,7 @@ impl Drafter<'_> {
         anchors: &[Cand],
         original: &Target<'_>,
         k: usize,
+        free: Option<&SolvedState>,
     ) -> Option<(Vec<Cand>, Solved)> {
         let m = anchors.len();
         if !closed && m < 3 {
@@ -155,13 +159,15 @@ impl Drafter<'_> {
         if count == 0 {
             return None;
         }
-        if let Some(all) = self.solve_holding(segs, closed, anchors, original, k, &wanted) {
+        self.seed = free.cloned();
+        let all = self.solve_holding(segs, closed, anchors, original, k, &wanted);
+        if let Some(all) = all {
             return Some((anchors.to_vec(), all));
         }
         let mut cur = anchors.to_vec();
         let mut want = wanted;
         let mut kept = vec![None; m];
-        let mut held = None;
+        let mut held: Option<Solved> = None;
         let mut j = 0;
         while j < cur.len() {
             let Some(tan) = want[j] else {
@@ -169,6 +175,8 @@ impl Drafter<'_> {
                 continue;
             };
             kept[j] = Some(tan);
+            let last = held.as_ref().map_or(free, |h| h.state.as_ref());
+            self.seed = last.cloned();
             if let Some(next) = self.solve_holding(segs, closed, &cur, original, k, &kept) {
                 held = Some(next);
                 j += 1;
@@ -184,8 +192,9 @@ impl Drafter<'_> {
                 let mut more_kept = pick(&kept);
                 let at = slots.iter().position(|o| *o == Some(j)).unwrap_or(j);
                 more_kept[at] = Some(tan);
-                if let Some(next) = self.solve_holding(segs, closed, &more, original, k, &more_kept)
-                {
+                self.seed = last.map(|st| seeded(st, segs, closed, &cur, &more));
+                let next = self.solve_holding(segs, closed, &more, original, k, &more_kept);
+                if let Some(next) = next {
                     held = Some(next);
                     want = pick(&want);
                     cur = more;
@@ -199,7 +208,7 @@ impl Drafter<'_> {
     }
 
     /// The piece solved with `tangents` held, if it converges and stays within the
-    /// tolerance.
+    /// tolerance; the solve starts from [`Drafter::seed`] where that is set.
     fn solve_holding(
         &mut self,
         segs: &[PathSeg],
