@@ -138,6 +138,7 @@ impl Contour {
                 hausdorff: Some(0.0),
                 within_tolerance: true,
                 fallback: false,
+                state: None,
             });
         }
         let glyph = DraftedGlyph {

@@ -2,7 +2,7 @@
 
 use kurbo::{BezPath, Point, Vec2};
 
-use crate::Spline;
+use crate::{SolvedState, Spline};
 
 /// Why an anchor was placed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
@@ -63,6 +63,12 @@ pub struct Piece {
     /// unchanged, `anchors` are its ends, and `spline` only the straight chord between
     /// them.
     pub fallback: bool,
+    /// The solver's unknowns at [`Piece::spline`] ([`SolvedState`]), where there is a
+    /// solve to reproduce (`None` for a fallback). The κ source keeps it
+    /// ([`DraftedGlyph::path_docs`]): the curve systems can have several solutions for the
+    /// same anchors, and a draft's refinements are solved from the previous solution, so a
+    /// cold solve of the final anchors need not find the drafted curve, or converge at all.
+    pub state: Option<SolvedState>,
 }
 
 /// A drafted contour.
@@ -142,6 +148,10 @@ impl DraftedGlyph {
     /// becomes that corner's incoming tangent. A contour drafted as one closed piece has no
     /// corner.
     ///
+    /// Each document keeps its pieces' solutions ([`Piece::state`],
+    /// [`PathDoc::solution`](crate::editor::PathDoc::solution)), so that it reopens with
+    /// the drafted curves.
+    ///
     /// This is what `kappa font` writes under the UFO lib key `org.kappa.contours` (as
     /// JSON), and what the editor and the Python filter solve back into the outline.
     pub fn path_docs(&self, scheme: crate::Scheme) -> Vec<crate::editor::PathDoc> {
@@ -177,11 +187,19 @@ impl DraftedGlyph {
                 if let (false, Some(first)) = (single, points.first_mut()) {
                     first.tangent_in = arriving;
                 }
+                // The editor cuts the document into the same pieces, in the same order, when
+                // its corners are exactly the pieces' ends.
+                let corners = points.iter().filter(|p| p.corner).count();
+                let solution = if corners.max(1) == c.pieces.len() {
+                    c.pieces.iter().map(|p| p.state.clone()).collect()
+                } else {
+                    Vec::new()
+                };
                 PathDoc {
                     points,
                     closed: true,
                     scheme,
-                    solution: Vec::new(),
+                    solution,
                 }
             })
             .collect()

@@ -184,6 +184,7 @@ pub fn draft_points(
             _ => shape.clone(),
         };
         let spline = solver.solve(points, *closed, scheme, &shape)?;
+        let state = solver.state();
         let anchors = anchors_of(&spline, points, AnchorKind::User, &[]);
         let path = spline_path(&spline, None);
         let piece = Piece {
@@ -194,6 +195,7 @@ pub fn draft_points(
             hausdorff: None,
             within_tolerance: true,
             fallback: false,
+            state,
         };
         out.push(DraftedContour {
             pieces: vec![piece],

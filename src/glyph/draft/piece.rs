@@ -38,6 +38,7 @@ fn fallback_piece(segs: &[PathSeg], closed: bool) -> Option<Piece> {
         hausdorff: Some(0.0),
         within_tolerance: true,
         fallback: true,
+        state: None,
     })
 }
 
@@ -62,6 +63,7 @@ fn finish(anchors: &[Cand], solved: Solved, closed: bool, hausdorff: f64, tolera
         hausdorff: Some(hausdorff),
         within_tolerance: hausdorff <= tolerance,
         fallback: false,
+        state: solved.state,
     }
 }
 
