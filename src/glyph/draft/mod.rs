@@ -63,7 +63,7 @@ use solve::{anchors_of, spline_path};
 ///    added anchors seeded in straight (at most 400 iterations), and only if no set solves
 ///    that way from scratch: a cold solve of many dense anchors is where the solver fails
 ///    most (on EB Garamond's `N`, 75 of 139 solves failed and took 3.5 of its 3.9 s; with
-///    the warm starts the glyph takes 1.0 s). Most samples are settled without a nearest-point search:
+///    the warm starts the glyph takes 0.5 s). Most samples are settled without a nearest-point search:
 ///    a point of the draft near the last nearest point, found by two Newton steps, is
 ///    within the tolerance already.
 /// 4. **Fairing** ([`DraftOptions::fair`], off by default): a κ-curve makes every point a
