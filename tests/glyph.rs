@@ -981,6 +981,59 @@ fn anchor_outline_makes_line_joins_tangent() {
     );
 }
 
+/// A small fillet between a stem and a crossbar (a quarter circle of radius 20 in a
+/// 2048-unit em: its chord is within the tolerance of the arc, and shorter than the minimum
+/// spacing of anchors) stays a curve, and the written outline meets both lines smoothly
+/// (within 0.5°); it was drafted as a straight line with a 45° corner at each end.
+#[test]
+fn small_fillets_stay_smooth() {
+    let options = options(Scheme::Kappa, DraftShape::Neutral);
+    let k = 0.5522847498 * 20.0;
+    let mut path = BezPath::new();
+    path.move_to((0.0, 0.0));
+    path.line_to((400.0, 0.0));
+    path.line_to((400.0, 100.0));
+    path.line_to((120.0, 100.0));
+    path.curve_to((120.0 - k, 100.0), (100.0, 120.0 - k), (100.0, 120.0));
+    path.line_to((100.0, 700.0));
+    path.line_to((0.0, 700.0));
+    path.close_path();
+    let drafted = draft(&path, &options).unwrap();
+    let nodes = anchor_outline(&drafted, &path, 0.2, options.tolerance);
+    let segs: Vec<kurbo::PathSeg> = nodes.path.segments().collect();
+    let n = segs.len();
+    let (start, end) = (Point::new(120.0, 100.0), Point::new(100.0, 120.0));
+    let mut curves = 0;
+    for (i, seg) in segs.iter().enumerate() {
+        let next = segs[(i + 1) % n];
+        let p = seg.end();
+        if (p - start).hypot() > 1e-6 && (p - end).hypot() > 1e-6 {
+            continue;
+        }
+        let tin = match *seg {
+            kurbo::PathSeg::Line(l) => l.p1 - l.p0,
+            kurbo::PathSeg::Quad(q) => q.p2 - q.p1,
+            kurbo::PathSeg::Cubic(c) => c.p3 - c.p2,
+        };
+        let tout = match next {
+            kurbo::PathSeg::Line(l) => l.p1 - l.p0,
+            kurbo::PathSeg::Quad(q) => q.p1 - q.p0,
+            kurbo::PathSeg::Cubic(c) => c.p1 - c.p0,
+        };
+        let turn = tin.cross(tout).atan2(tin.dot(tout)).abs();
+        assert!(
+            turn < 0.5f64.to_radians(),
+            "{p:?}: turns {}°",
+            turn.to_degrees()
+        );
+        curves += usize::from(!matches!(next, kurbo::PathSeg::Line(_)));
+    }
+    // The fillet's first curve leaves `start`; the line leaves `end`.
+    assert_eq!(curves, 1, "{:?}", nodes.path.to_svg());
+    let d = hausdorff(&nodes.path, &path, 64);
+    assert!(d <= options.tolerance, "{d}");
+}
+
 /// The outline without its one-point contours.
 fn without_points(path: &kurbo::BezPath) -> kurbo::BezPath {
     let mut out = kurbo::BezPath::new();

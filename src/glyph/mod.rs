@@ -89,7 +89,10 @@ pub use ufo::{rebuild_ufo, KAPPA_LIB_KEY};
 use kurbo::{BezPath, ParamCurve, PathEl, PathSeg, Point};
 
 /// The contours of a path: the segments of each subpath (kurbo's closing line included,
-/// segments of zero extent dropped) and whether it is closed.
+/// segments of zero extent dropped) and whether it is closed. A closing line shorter than
+/// rounding (1e-9 of the largest coordinate, or of 1) is dropped as well, the last segment
+/// then ending exactly where the contour starts: a line of 1e-14 units has no direction,
+/// and would make a kink at the start node.
 pub fn contours(path: &BezPath) -> Vec<(Vec<PathSeg>, bool)> {
     let mut out = Vec::new();
     let mut current = BezPath::new();
@@ -97,7 +100,10 @@ pub fn contours(path: &BezPath) -> Vec<(Vec<PathSeg>, bool)> {
         if current.elements().is_empty() {
             return;
         }
-        let segs: Vec<PathSeg> = current.segments().filter(|s| !is_degenerate(s)).collect();
+        let mut segs: Vec<PathSeg> = current.segments().filter(|s| !is_degenerate(s)).collect();
+        if closed {
+            close_up(&mut segs);
+        }
         out.push((segs, closed));
         *current = BezPath::new();
     };
@@ -130,6 +136,30 @@ pub fn contours(path: &BezPath) -> Vec<(Vec<PathSeg>, bool)> {
     }
     flush(&mut current, false);
     out
+}
+
+/// Drops the closing line of a closed contour if it is shorter than rounding, and ends the
+/// segment before it at the contour's start.
+fn close_up(segs: &mut Vec<PathSeg>) {
+    let (Some(PathSeg::Line(l)), true) = (segs.last().copied(), segs.len() > 1) else {
+        return;
+    };
+    let scale = segs
+        .iter()
+        .flat_map(|s| [s.start(), s.end()])
+        .fold(1.0f64, |m, p| m.max(p.x.abs()).max(p.y.abs()));
+    if (l.p1 - l.p0).hypot() > 1e-9 * scale {
+        return;
+    }
+    segs.pop();
+    let start = segs[0].start();
+    if let Some(last) = segs.last_mut() {
+        match last {
+            PathSeg::Line(x) => x.p1 = start,
+            PathSeg::Quad(x) => x.p2 = start,
+            PathSeg::Cubic(x) => x.p3 = start,
+        }
+    }
 }
 
 /// Whether all control points of a segment coincide.
@@ -214,5 +244,35 @@ fn is_implied(prev: PathSeg, next: PathSeg) -> bool {
             (mid - a.p2).hypot() <= 1e-9 * scale
         }
         _ => false,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_closing_line_shorter_than_rounding_is_dropped() {
+        // A closed contour whose last curve ends 3e-14 off its start (as an outline drafted
+        // piece by piece can): no closing line, and the last curve ends at the start.
+        let mut p = BezPath::new();
+        p.move_to((45.00000000000006, 320.0));
+        p.curve_to((45.0, 100.0), (300.0, 0.0), (400.0, 0.0));
+        p.curve_to((600.0, 0.0), (45.0, 500.0), (45.000000000000085, 320.0));
+        p.close_path();
+        let c = contours(&p);
+        assert_eq!(c.len(), 1);
+        let (segs, closed) = &c[0];
+        assert!(*closed);
+        assert_eq!(segs.len(), 2);
+        assert_eq!(segs[1].end(), segs[0].start());
+        // A real closing line stays.
+        let mut q = BezPath::new();
+        q.move_to((0.0, 0.0));
+        q.curve_to((10.0, 0.0), (10.0, 10.0), (0.0, 10.0));
+        q.close_path();
+        let c = contours(&q);
+        assert_eq!(c[0].0.len(), 2);
+        assert!(matches!(c[0].0[1], PathSeg::Line(_)));
     }
 }

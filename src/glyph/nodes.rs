@@ -14,6 +14,7 @@ use kurbo::{
 };
 
 use super::{AnchorKind, DraftedGlyph, Piece};
+use crate::analysis::continuity;
 use crate::trig::TrigBez;
 use crate::{Scheme, Segment};
 
@@ -174,7 +175,7 @@ fn piece_curves(
             .anchors
             .get(anchor)
             .is_some_and(|a| a.kind == AnchorKind::Extremum);
-        let span = Span { parts };
+        let span = Span::new(parts);
         let fitted = span.to_cubics(accuracy, (0.5 * room).max(accuracy));
         if fitted.len() > 1 {
             out.split_spans += 1;
@@ -359,6 +360,12 @@ fn fit_handle_lengths(c: &CubicBez, d0: Vec2, d1: Vec2) -> Option<CubicBez> {
 /// drafting cuts contours).
 const SMOOTH_JOIN_ANGLE: f64 = 10.0 * core::f64::consts::PI / 180.0;
 
+/// The largest angle by which a handle is turned onto a line where the original's join is
+/// smooth ([`Budget::smooth_on_original`]): the three-anchor drafts of EB Garamond's small
+/// fillets meet their lines at 46°–63°. The turn is also bounded by [`Budget::accept`], and
+/// an asymmetric fillet's turned curve keeps both handles pointing forward.
+const FILLET_JOIN_ANGLE: f64 = 70.0 * core::f64::consts::PI / 180.0;
+
 /// Makes each curve that meets a straight segment at a near-smooth join (within
 /// [`SMOOTH_JOIN_ANGLE`]) leave it tangent to the line: the drafting cuts contours at straight
 /// segments and solves the curve between them with free ends, so a smooth line-to-curve
@@ -377,7 +384,7 @@ fn smooth_line_joins(
         if let (PathSeg::Line(l), PathSeg::Cubic(c)) = (curves[i].0, curves[next].0) {
             let dir = l.p1 - l.p0;
             let h = c.p1 - c.p0;
-            if turn_within(dir, h).is_some() {
+            if turn_within(dir, h).is_some() || budget.smooth_on_original(c.p0, dir, h) {
                 let u = dir / dir.hypot();
                 if let Some((f, d)) = budget.turn_or_refit(&c, next, Some(u), None, curves, sources)
                 {
@@ -390,7 +397,7 @@ fn smooth_line_joins(
         if let (PathSeg::Cubic(c), PathSeg::Line(l)) = (curves[i].0, curves[next].0) {
             let dir = l.p1 - l.p0;
             let h = c.p3 - c.p2;
-            if turn_within(dir, h).is_some() {
+            if turn_within(dir, h).is_some() || budget.smooth_on_original(c.p3, dir, h) {
                 let u = dir / dir.hypot();
                 if let Some((f, d)) = budget.turn_or_refit(&c, i, None, Some(-u), curves, sources) {
                     curves[i].0 = PathSeg::Cubic(f);
@@ -404,12 +411,14 @@ fn smooth_line_joins(
 /// The length of handle `h` if it turns from direction `dir` by a nonzero angle of at most
 /// [`SMOOTH_JOIN_ANGLE`].
 fn turn_within(dir: Vec2, h: Vec2) -> Option<f64> {
-    let (ld, lh) = (dir.hypot(), h.hypot());
-    if ld == 0.0 || lh == 0.0 {
-        return None;
-    }
-    let angle = dir.cross(h).atan2(dir.dot(h)).abs();
-    (angle > 0.0 && angle <= SMOOTH_JOIN_ANGLE).then_some(lh)
+    turn_angle(dir, h)
+        .filter(|&a| a > 0.0 && a <= SMOOTH_JOIN_ANGLE)
+        .map(|_| h.hypot())
+}
+
+/// The angle in `[0, π]` from direction `dir` to handle `h`; `None` if either is zero.
+fn turn_angle(dir: Vec2, h: Vec2) -> Option<f64> {
+    (dir.hypot() > 0.0 && h.hypot() > 0.0).then(|| dir.cross(h).atan2(dir.dot(h)).abs())
 }
 
 /// How far a curve turned at a node may move: within its room of the drafted span (see
@@ -496,6 +505,31 @@ impl Budget<'_> {
         })
     }
 
+    /// Whether the original outline has a smooth join at `p` (within 1e-6 of the
+    /// tolerance) with a curve leaving or reaching it along `dir` (within [`AXIS_ANGLE`]),
+    /// and the drafted handle `h` (pointing the way the outline runs, as `dir` does) is within
+    /// [`FILLET_JOIN_ANGLE`] of `dir`: a line-to-curve join the designer made smooth, which
+    /// the draft meets at more than [`SMOOTH_JOIN_ANGLE`] (a small fillet between a stem and
+    /// a crossbar, drafted through three anchors, meets its lines at up to 63°).
+    fn smooth_on_original(&self, p: Point, dir: Vec2, h: Vec2) -> bool {
+        if !turn_angle(dir, h).is_some_and(|a| a <= FILLET_JOIN_ANGLE) {
+            return false;
+        }
+        let near = 1e-6 * self.tolerance;
+        // The line, arriving at `p` and leaving it, against each curve of the original that
+        // leaves or reaches `p` (the joint's tangent angle as `continuity` measures it).
+        let arriving = PathSeg::Line(kurbo::Line::new(p - dir, p));
+        let leaving = PathSeg::Line(kurbo::Line::new(p, p + dir));
+        let smooth = |a: &PathSeg, b: &PathSeg| continuity(a, b).tangent_angle <= AXIS_ANGLE;
+        self.original
+            .iter()
+            .filter(|s| !matches!(s, PathSeg::Line(_)))
+            .any(|s| {
+                ((s.start() - p).hypot() <= near && smooth(&arriving, s))
+                    || ((s.end() - p).hypot() <= near && smooth(s, &leaving))
+            })
+    }
+
     /// Whether every sample of `c` is within the tolerance of the original outline.
     fn near_original(&self, c: &CubicBez) -> bool {
         const SAMPLES: usize = 24;
@@ -568,26 +602,70 @@ impl Part {
     }
 }
 
-/// The curve between two anchors: one or two parts, parameter `u ∈ [0, 1]` spread evenly
-/// over them.
+/// The curve between two anchors: one or two parts, parameter `u ∈ [0, 1]` spread over them
+/// in proportion to their lengths (`bounds[i]..bounds[i + 1]` is part `i`'s share). Spread
+/// evenly, a part of a unit or two next to an anchor (a peak near its segment's end) took
+/// half the parameter range, and kurbo's fit, which halves the range where one cubic does
+/// not do, cut the span at the parts' joint: a curve segment under 2 units in the written
+/// outline.
 #[derive(Clone, Debug)]
 struct Span {
     parts: Vec<Part>,
+    bounds: Vec<f64>,
 }
 
 impl Span {
-    /// The part and its local parameter at `u`; at a boundary, the part after it for
-    /// `sign > 0` and the one before for `sign < 0`.
-    fn locate(&self, u: f64, sign: f64) -> (&Part, f64, f64) {
-        let k = self.parts.len() as f64;
-        let x = (u.clamp(0.0, 1.0) * k).min(k);
-        let mut i = x.floor();
-        if (x == i && sign < 0.0 && i > 0.0) || i >= k {
-            i -= 1.0;
+    /// The span of `parts`, with their shares of the parameter by length (16 chords each; a
+    /// part gets at least 1e-6 of the range).
+    fn new(parts: Vec<Part>) -> Span {
+        const CHORDS: usize = 16;
+        let lengths: Vec<f64> = parts
+            .iter()
+            .map(|part| {
+                let (a, b) = (part.range.start, part.range.end);
+                let at = |i: usize| {
+                    part.curve
+                        .point_deriv(a + (b - a) * i as f64 / CHORDS as f64)
+                        .0
+                };
+                (1..=CHORDS)
+                    .map(|i| (at(i) - at(i - 1)).hypot())
+                    .sum::<f64>()
+            })
+            .collect();
+        let total: f64 = lengths.iter().sum();
+        let k = parts.len() as f64;
+        let mut bounds = vec![0.0];
+        let mut acc = 0.0;
+        for len in &lengths {
+            let share = if total > 0.0 && total.is_finite() {
+                (len / total).max(1e-6)
+            } else {
+                1.0 / k
+            };
+            acc += share;
+            bounds.push(acc);
         }
-        let part = &self.parts[i as usize];
+        for b in bounds.iter_mut() {
+            *b /= acc;
+        }
+        Span { parts, bounds }
+    }
+
+    /// The part and its local parameter at `u`, with the parameter speed's factor; at a
+    /// boundary, the part after it for `sign > 0` and the one before for `sign < 0`.
+    fn locate(&self, u: f64, sign: f64) -> (&Part, f64, f64) {
+        let k = self.parts.len();
+        let u = u.clamp(0.0, 1.0);
+        let mut i = (0..k).rfind(|&i| self.bounds[i] <= u).unwrap_or(0);
+        if u == self.bounds[i] && sign < 0.0 && i > 0 {
+            i -= 1;
+        }
+        let (lo, hi) = (self.bounds[i], self.bounds[i + 1]);
+        let part = &self.parts[i];
         let w = part.range.end - part.range.start;
-        (part, part.range.start + w * (x - i), w * k)
+        let x = ((u - lo) / (hi - lo)).clamp(0.0, 1.0);
+        (part, part.range.start + w * x, w / (hi - lo))
     }
 
     fn eval(&self, u: f64, sign: f64) -> (Point, Vec2) {
@@ -688,11 +766,14 @@ impl ParamCurveFit for Span {
     /// jumps where the parts meet, which one quadrature over the whole range would not
     /// integrate accurately (and the fit would then miss).
     fn moment_integrals(&self, range: Range<f64>) -> (f64, f64, f64) {
-        let k = self.parts.len() as f64;
         let mut total = (0.0, 0.0, 0.0);
         let mut lo = range.start;
         while lo < range.end {
-            let hi = (((lo * k).floor() + 1.0) / k).min(range.end);
+            let next = self.bounds.iter().copied().find(|&b| b > lo).unwrap_or(1.0);
+            let hi = next.min(range.end);
+            if hi <= lo {
+                break;
+            }
             let (t0, dt) = (0.5 * (lo + hi), 0.5 * (hi - lo));
             for &(wi, xi) in kurbo::common::GAUSS_LEGENDRE_COEFFS_16 {
                 let (p, d) = self.eval(t0 + xi * dt, 1.0);
@@ -710,6 +791,34 @@ impl ParamCurveFit for Span {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_span_with_a_short_part_is_not_cut_at_the_parts_joint() {
+        // The last unit of one quadratic, then a long bend of another, meeting at a
+        // curvature jump (as an anchor whose peak lies near its segment's end gives): fitted
+        // within a tight accuracy, no cubic of the fit is shorter than 2 units.
+        let a = kurbo::QuadBez::new((0.0, 0.0), (50.0, 50.0), (100.0, 0.0));
+        let t = 1.0 - 1.0 / a.p1.distance(a.p2) / 2.0;
+        let b = kurbo::QuadBez::new((100.0, 0.0), (150.0, -50.0), (160.0, 40.0));
+        let span = Span::new(vec![
+            Part {
+                curve: SegCurve::Poly(PathSeg::Quad(a)),
+                range: t..1.0,
+            },
+            Part {
+                curve: SegCurve::Poly(PathSeg::Quad(b)),
+                range: 0.0..1.0,
+            },
+        ]);
+        assert!((span.eval(0.0, 1.0).0 - a.eval(t)).hypot() < 1e-12);
+        assert!((span.eval(1.0, -1.0).0 - b.p2).hypot() < 1e-12);
+        let cubics = span.to_cubics(0.01, 0.01);
+        assert!(cubics.len() > 1);
+        for c in &cubics {
+            assert!((c.p3 - c.p0).hypot() >= 2.0, "{c:?}");
+        }
+        assert!(span.distance(&cubics) < 0.05);
+    }
 
     #[test]
     fn a_bulging_curve_is_cut_exactly_at_its_extremum() {

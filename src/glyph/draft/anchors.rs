@@ -67,6 +67,10 @@ impl Drafter<'_> {
         }
         let mut out: Vec<Cand> = kept.into_iter().map(|(c, _)| c).collect();
         out.sort_by(|a, b| a.s.total_cmp(&b.s));
+        if !closed && out.len() == 2 {
+            out.extend(self.fillet_anchor(segs));
+            out.sort_by(|a, b| a.s.total_cmp(&b.s));
+        }
         if closed && out.len() < 3 {
             // A closed curve needs three points. Without any: three evenly spread; else the
             // largest gap between them gets points at its thirds (not in its middle, which
@@ -97,6 +101,52 @@ impl Drafter<'_> {
             out.sort_by(|a, b| a.s.total_cmp(&b.s));
         }
         out
+    }
+
+    /// The middle anchor of a small curved piece that would otherwise keep only its two
+    /// ends, and so be drafted as a straight line: a fillet, where a crossbar meets a stem.
+    /// A κ-curve through two points is their chord, and a fillet shorter than
+    /// [`DraftOptions::min_spacing`](super::DraftOptions::min_spacing) is often within the
+    /// tolerance of its chord, so the refinement would leave it straight, with a corner at
+    /// each end where the original's joins are smooth (EB Garamond's `H` and `4`: corners of
+    /// 24°–84°). With the anchor halfway along it the draft is the quadratic through the
+    /// ends that peaks there, whose end tangents are near the original's (on a quarter
+    /// circle, 5.4° off: the parabola through the ends with its vertex at the middle has its
+    /// control point at `(√2 − ½) r` along the diagonal), and the node outline turns them onto
+    /// the lines. `None` for a piece with a chord over half the minimum spacing or under
+    /// twice the tolerance (the two curve segments would be shorter than a font checker's
+    /// 2 units), or that keeps within a tenth of the tolerance of its chord.
+    fn fillet_anchor(&self, segs: &[PathSeg]) -> Option<Cand> {
+        const SAMPLES: usize = 64;
+        let n = segs.len() as f64;
+        let (a, b) = (segs.first()?.start(), segs.last()?.end());
+        let tol = self.options.tolerance;
+        let chord = self.fillet_chord(segs).filter(|&c| c >= 2.0 * tol)?;
+        let s_at = |k: usize| n * k as f64 / SAMPLES as f64;
+        let pts: Vec<Point> = (0..=SAMPLES).map(|k| eval_at(segs, s_at(k))).collect();
+        let bulge = pts
+            .iter()
+            .map(|p| (*p - a).cross(b - a).abs() / chord)
+            .fold(0.0, f64::max);
+        if bulge < 0.1 * tol {
+            return None;
+        }
+        let mut length = vec![0.0f64; SAMPLES + 1];
+        for k in 1..=SAMPLES {
+            length[k] = length[k - 1] + (pts[k] - pts[k - 1]).hypot();
+        }
+        let k = (1..SAMPLES).find(|&k| length[k] >= 0.5 * length[SAMPLES])?;
+        Some(Cand {
+            s: s_at(k),
+            kind: AnchorKind::Peak,
+        })
+    }
+
+    /// The chord of an open piece short enough to be a fillet: at most half the
+    /// [`DraftOptions::min_spacing`](super::DraftOptions::min_spacing), end to end.
+    pub(super) fn fillet_chord(&self, segs: &[PathSeg]) -> Option<f64> {
+        let chord = (segs.last()?.end() - segs.first()?.start()).hypot();
+        (chord <= 0.5 * self.options.min_spacing).then_some(chord)
     }
 
     fn extrema(&self, segs: &[PathSeg], closed: bool, cands: &mut Vec<Cand>) {

@@ -4,7 +4,7 @@
 use kurbo::Point;
 
 use super::Drafter;
-use crate::{Error, Scheme, Shape, Spline};
+use crate::{Error, Scheme, Shape, SolvedState, Spline};
 
 /// Secant steps of the auto shape after its two start-up solves.
 pub const AUTO_SECANT_STEPS: usize = 4;
@@ -25,7 +25,7 @@ impl Drafter<'_> {
         points: &[Point],
         closed: bool,
         targets: &[f64],
-    ) -> Result<Spline, Error> {
+    ) -> Result<(Spline, Option<SolvedState>), Error> {
         let scheme = self.options.scheme;
         let lo = match scheme {
             Scheme::EkTrig => AUTO_MIN_TRIG_SHAPE,
@@ -58,6 +58,7 @@ impl Drafter<'_> {
                 self.solve_points(points, closed, &Shape::PerPoint(a0.clone()))?
             }
         };
+        let st0 = self.solver.state();
         let mut k0 = peaks(&s0);
         let mut a1: Vec<f64> = (0..m)
             .map(|i| match k0[i] {
@@ -66,15 +67,16 @@ impl Drafter<'_> {
             })
             .collect();
         if a1 == a0 {
-            return Ok(s0);
+            return Ok((s0, st0));
         }
         let mut s1 = match self
             .solver
             .resolve_shapes(scheme, &Shape::PerPoint(a1.clone()))
         {
             Ok(s) => s,
-            Err(_) => return Ok(s0),
+            Err(_) => return Ok((s0, st0)),
         };
+        let mut st1 = self.solver.state();
         for _ in 0..AUTO_SECANT_STEPS {
             let k1 = peaks(&s1);
             let mut a2 = a1.clone();
@@ -116,11 +118,12 @@ impl Drafter<'_> {
                 Ok(s2) => {
                     a0 = core::mem::replace(&mut a1, a2);
                     s1 = s2;
+                    st1 = self.solver.state();
                     k0 = k1;
                 }
                 Err(_) => break,
             }
         }
-        Ok(s1)
+        Ok((s1, st1))
     }
 }

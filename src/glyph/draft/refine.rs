@@ -196,25 +196,21 @@ pub(super) fn seeded(
     };
     let mut old = 0;
     for (k, c) in more.iter().enumerate() {
-        if block(k).map_or(true, |b| b >= blocks) {
-            if anchors.get(old).is_some_and(|a| a.s == c.s) {
-                old += 1;
-            }
-            continue;
-        }
         let kept = anchors.get(old).is_some_and(|a| a.s == c.s);
-        match block(old).filter(|&b| kept && b < state.ratios.len()) {
-            Some(b) => {
-                out.controls
-                    .extend_from_slice(&state.controls[2 * b..2 * b + 2]);
-                out.ratios.push(state.ratios[b]);
-                out.peaks.push(state.peaks[b]);
-            }
-            None => {
-                let p = eval_at(segs, c.s);
-                out.controls.extend([p.x, p.y]);
-                out.ratios.push(0.5);
-                out.peaks.push(0.5);
+        if block(k).is_some_and(|b| b < blocks) {
+            match block(old).filter(|&b| kept && b < state.ratios.len()) {
+                Some(b) => {
+                    out.controls
+                        .extend_from_slice(&state.controls[2 * b..2 * b + 2]);
+                    out.ratios.push(state.ratios[b]);
+                    out.peaks.push(state.peaks[b]);
+                }
+                None => {
+                    let p = eval_at(segs, c.s);
+                    out.controls.extend([p.x, p.y]);
+                    out.ratios.push(0.5);
+                    out.peaks.push(0.5);
+                }
             }
         }
         if kept {
@@ -267,5 +263,79 @@ mod tests {
         // A real difference still counts.
         let spans = [None, d(x), None, d(x * (1.0 + 1e-7)), d(3.0)];
         assert_eq!(pick_spans(&spans, true, 8).0, [3, 1, 4]);
+    }
+
+    fn cands(s: &[f64]) -> Vec<Cand> {
+        s.iter()
+            .map(|&s| Cand {
+                s,
+                kind: AnchorKind::Refined,
+            })
+            .collect()
+    }
+
+    /// Three sides of a square of side 10, and for a closed piece the fourth.
+    fn square(closed: bool) -> Vec<PathSeg> {
+        let p = [
+            (0.0, 0.0),
+            (10.0, 0.0),
+            (10.0, 10.0),
+            (0.0, 10.0),
+            (0.0, 0.0),
+        ];
+        let sides = if closed { 4 } else { 3 };
+        (0..sides)
+            .map(|i| PathSeg::Line(kurbo::Line::new(p[i], p[i + 1])))
+            .collect()
+    }
+
+    #[test]
+    fn seeded_keeps_the_kept_blocks_and_starts_the_added_ones_straight() {
+        // Open, four anchors: blocks for the interior anchors at 1 and 2.
+        let state = SolvedState {
+            controls: vec![11.0, 1.0, 12.0, 2.0],
+            ratios: vec![0.3, 1.0],
+            peaks: vec![0.4, 0.6],
+        };
+        let segs = square(false);
+        let anchors = cands(&[0.0, 1.0, 2.0, 3.0]);
+        // An anchor added in the first block starts straight at its point.
+        let s = seeded(
+            &state,
+            &segs,
+            false,
+            &anchors,
+            &cands(&[0.0, 0.5, 1.0, 2.0, 3.0]),
+        );
+        assert_eq!(s.controls, [5.0, 0.0, 11.0, 1.0, 12.0, 2.0]);
+        assert_eq!(s.ratios, [0.5, 0.3, 1.0]);
+        assert_eq!(s.peaks, [0.5, 0.4, 0.6]);
+        // Added in the last block: the old last ratio (1) is no longer the last, so it
+        // starts at ½, and the new last one is 1.
+        let s = seeded(
+            &state,
+            &segs,
+            false,
+            &anchors,
+            &cands(&[0.0, 1.0, 2.0, 2.5, 3.0]),
+        );
+        assert_eq!(s.controls, [11.0, 1.0, 12.0, 2.0, 5.0, 10.0]);
+        assert_eq!(s.ratios, [0.3, 0.5, 1.0]);
+        assert_eq!(s.peaks, [0.4, 0.6, 0.5]);
+        // Closed, three anchors: one block each, and the added anchor's after the last.
+        let state = SolvedState {
+            controls: vec![1.0, 1.0, 2.0, 2.0, 3.0, 3.0],
+            ratios: vec![0.2, 0.4, 0.6],
+            peaks: vec![0.1, 0.5, 0.9],
+        };
+        let segs = square(true);
+        let anchors = cands(&[0.0, 1.0, 2.0]);
+        let s = seeded(&state, &segs, true, &anchors, &cands(&[0.0, 1.0, 2.0, 3.5]));
+        assert_eq!(s.controls, [1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 0.0, 5.0]);
+        assert_eq!(s.ratios, [0.2, 0.4, 0.6, 0.5]);
+        assert_eq!(s.peaks, [0.1, 0.5, 0.9, 0.5]);
+        let s = seeded(&state, &segs, true, &anchors, &cands(&[0.0, 0.5, 1.0, 2.0]));
+        assert_eq!(s.controls, [1.0, 1.0, 5.0, 0.0, 2.0, 2.0, 3.0, 3.0]);
+        assert_eq!(s.ratios, [0.2, 0.5, 0.4, 0.6]);
     }
 }

@@ -25,11 +25,20 @@ impl Drafter<'_> {
             .collect();
         let scheme = self.options.scheme;
         let interior = closed || points.len() > 2;
-        let spline = match (&self.options.shape, scheme) {
-            (_, Scheme::Kappa) => self.solve_points(&points, closed, &Shape::Neutral)?,
-            (DraftShape::Auto, _) if interior => self.auto_shape(&points, closed, &targets)?,
-            (DraftShape::Global(a), _) => self.solve_points(&points, closed, &Shape::Global(*a))?,
-            _ => self.solve_points(&points, closed, &Shape::Neutral)?,
+        // The solver's unknowns at the spline returned: the auto shape's last re-solve may
+        // have failed, and its answer is then an earlier one.
+        let (spline, state) = match (&self.options.shape, scheme) {
+            (DraftShape::Auto, s) if interior && s != Scheme::Kappa => {
+                self.auto_shape(&points, closed, &targets)?
+            }
+            (shape, s) => {
+                let shape = match shape {
+                    DraftShape::Global(a) if s != Scheme::Kappa => Shape::Global(*a),
+                    _ => Shape::Neutral,
+                };
+                let spline = self.solve_points(&points, closed, &shape)?;
+                (spline, self.solver.state())
+            }
         };
         let path = if !closed && points.len() == 2 {
             // A straight piece: one line, whatever the scheme.
@@ -46,7 +55,7 @@ impl Drafter<'_> {
             targets,
             path,
             tangents: self.tangents.clone(),
-            state: self.solver.state(),
+            state,
         })
     }
 
@@ -60,29 +69,38 @@ impl Drafter<'_> {
     ) -> Result<Spline, Error> {
         let scheme = self.options.scheme;
         let seed = self.seed.take();
-        let options = self.solver.options();
-        if seed.is_some() {
-            self.solver.set_options(crate::SolveOptions {
-                max_iterations: options.max_iterations.min(SEEDED_ITERATIONS),
-                ..options
-            });
-        }
-        let r = match (&seed, self.tangents.is_empty()) {
-            (None, true) => self.solver.solve(points, closed, scheme, shape),
-            (None, false) => {
-                self.solver
-                    .solve_with_tangents(points, closed, scheme, shape, &self.tangents)
-            }
-            (Some(seed), true) => self.solver.solve_from(points, closed, scheme, shape, seed),
-            (Some(seed), false) => self.solver.solve_with_tangents_from(
-                points,
-                closed,
-                scheme,
-                shape,
-                &self.tangents,
-                seed,
-            ),
+        let cap = if seed.is_some() {
+            SEEDED_ITERATIONS
+        } else {
+            usize::MAX
         };
+        self.with_iteration_cap(cap, |d| match (&seed, d.tangents.is_empty()) {
+            (None, true) => d.solver.solve(points, closed, scheme, shape),
+            (None, false) => {
+                d.solver
+                    .solve_with_tangents(points, closed, scheme, shape, &d.tangents)
+            }
+            (Some(seed), true) => d.solver.solve_from(points, closed, scheme, shape, seed),
+            (Some(seed), false) => {
+                d.solver
+                    .solve_with_tangents_from(points, closed, scheme, shape, &d.tangents, seed)
+            }
+        })
+    }
+
+    /// Runs `f` with the solver's iteration budget lowered to `cap` (if it is higher), then
+    /// gives the solver its options back.
+    pub(super) fn with_iteration_cap<R>(
+        &mut self,
+        cap: usize,
+        f: impl FnOnce(&mut Self) -> R,
+    ) -> R {
+        let options = self.solver.options();
+        self.solver.set_options(crate::SolveOptions {
+            max_iterations: options.max_iterations.min(cap),
+            ..options
+        });
+        let r = f(self);
         self.solver.set_options(options);
         r
     }
