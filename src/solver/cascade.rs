@@ -199,7 +199,8 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// solution), until `s`
     /// reaches 1, the steps shrink below `steps.min_step` or the iterations (counted from
     /// `total`, each step capped at [`STEP_BUDGET`](super::tuning::cascade::STEP_BUDGET) through `budget`) reach
-    /// `steps.max_iterations`. A final polish solves `prob` itself. Where the homotopy
+    /// `steps.max_iterations`. A final polish solves `prob` itself, and where it fails, the
+    /// [`collapse`](super::collapse) step from its state (within the same budget). Where the homotopy
     /// moves the input points, each step first moves every control point `c_j` with its
     /// point `p_j` (as a warm re-solve does): a segment near its collapsed limit has `c_j`
     /// within its tiny extent of `p_j`, and left behind it would start Newton on the wrong
@@ -240,9 +241,18 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
         }
         carry(&mut self.state.c, &prob.p, &at);
         let fin = self.solve(prob, &budget(total, steps.step_budget), 0, false);
-        Outcome {
+        let fin = Outcome {
             iterations: total + fin.iterations,
             ..fin
+        };
+        if fin.converged {
+            return fin;
         }
+        let rest = budget(fin.iterations, usize::MAX);
+        let rest = Settings {
+            max_iterations: fin.iterations + rest.max_iterations,
+            ..rest
+        };
+        self.finish_collapse(prob, &rest, fin)
     }
 }

@@ -33,12 +33,14 @@
 //! [`residual`] evaluates and assembles the block equations, [`check`] measures convergence,
 //! and [`linear`], [`condense`] and [`split`] make up the linear system of a Newton step.
 //! [`newton`] is the solve loop, started by the [`classic`] iteration and its [`peak`] root
-//! solves. Cold solves fall back on the continuations of [`cascade`], [`points`] and
-//! [`tangent`]; warm re-solves after a local edit work on a [`window`].
+//! solves. Cold solves fall back on the continuations of [`cascade`], [`nudge`], [`points`]
+//! and [`tangent`], each ending with the [`collapse`] step; warm re-solves after a local edit
+//! work on a [`window`].
 
 mod cascade;
 mod check;
 mod classic;
+mod collapse;
 mod condense;
 mod linear;
 mod newton;

@@ -37,15 +37,14 @@ fn nudges<const D: usize>(prob: &Problem<D>) -> Option<Vec<[f64; D]>> {
     let mut any = false;
     let out = (0..prob.p.len())
         .map(|i| {
+            if !collinear_at(prob, i) {
+                return [0.0; D];
+            }
             let (a, c) = super::points::neighbours(prob, i);
             let p = prob.p[i];
             let u = super::sub(c, a);
             let w = super::sub(p, a);
-            let (uu, ww, uw) = (dot(u, u), dot(w, w), dot(u, w));
-            let cross2 = (uu * ww - uw * uw).max(0.0);
-            if !(uu > 0.0 && ww > 0.0) || cross2 > COLLINEAR * COLLINEAR * uu * ww {
-                return [0.0; D];
-            }
+            let (uu, ww) = (dot(u, u), dot(w, w));
             let Some(k) = (0..D)
                 .filter(|&k| !fixed[k])
                 .min_by(|&x, &y| u[x].abs().total_cmp(&u[y].abs()))
@@ -67,6 +66,18 @@ fn nudges<const D: usize>(prob: &Problem<D>) -> Option<Vec<[f64; D]>> {
         })
         .collect();
     any.then_some(out)
+}
+
+/// Whether point `i` of `prob` is collinear with its neighbours (the ghost points at the
+/// ends of an open curve): the sine of the angle between `p_i - p_{i-1}` and
+/// `p_{i+1} - p_{i-1}` is at most [`COLLINEAR`].
+pub(super) fn collinear_at<const D: usize>(prob: &Problem<D>, i: usize) -> bool {
+    let (a, c) = super::points::neighbours(prob, i);
+    let u = super::sub(c, a);
+    let w = super::sub(prob.p[i], a);
+    let (uu, ww, uw) = (dot(u, u), dot(w, w), dot(u, w));
+    let cross2 = (uu * ww - uw * uw).max(0.0);
+    uu > 0.0 && ww > 0.0 && cross2 <= COLLINEAR * COLLINEAR * uu * ww
 }
 
 impl<const D: usize, const B: usize> Workspace<D, B> {

@@ -247,6 +247,24 @@ pub(crate) mod nudge {
     pub(crate) const MIN_STEP: f64 = 0.02;
 }
 
+/// Finishing a collapse ([`super::collapse`]).
+pub(crate) mod collapse {
+    /// A block counts as collapsing when both its ratios `1 - λ_{j-1}` and `λ_j` are below
+    /// this (the failing lemniscates' crossing blocks were at 1e-5 to 1e-12; the blocks near
+    /// 0.02–0.05 there were no collapse but other solutions' joints).
+    pub(crate) const COLLAPSING: f64 = 1e-4;
+
+    /// The factor a round moves a collapsing block by towards its limit: 1e-3 solved the four
+    /// lemniscates in one round each.
+    pub(crate) const SHRINK: f64 = 1e-3;
+
+    /// Rounds of shrinking and Newton.
+    pub(crate) const ROUNDS: usize = 3;
+
+    /// Newton budget of one round (the rounds that converged took 5–78 iterations).
+    pub(crate) const ROUND_BUDGET: usize = 100;
+}
+
 /// Root solves for the peak parameters ([`super::peak`]).
 pub(crate) mod peak {
     /// Accuracy of `t` in the classic loop's root solve: Newton refines it afterwards, so the
