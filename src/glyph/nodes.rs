@@ -299,7 +299,13 @@ fn snap_extrema(
         let angle = h_out.angle();
         let axis = (angle / core::f64::consts::FRAC_PI_2).round() * core::f64::consts::FRAC_PI_2;
         let off = angle - axis;
-        if off.abs() > SNAP_ANGLE || off == 0.0 {
+        // The arriving handle's turn from the same axis: one of the two may be on it already
+        // (a piece cut at the node, which held its tangent on one side only).
+        let off_in = {
+            let a = (-h_in).angle() - axis;
+            (a + core::f64::consts::PI).rem_euclid(core::f64::consts::TAU) - core::f64::consts::PI
+        };
+        if off.abs() > SNAP_ANGLE || off_in.abs() > SNAP_ANGLE || (off == 0.0 && off_in == 0.0) {
             continue;
         }
         // The axis direction, exactly.

@@ -23,6 +23,15 @@ const EXTREMUM_SLOPE: f64 = 0.02;
 /// ([`draft`](super::draft), step 1).
 const EXTREMUM_SPACING: f64 = 0.25;
 
+/// The longest chord, in minimum spacings, of a piece that gets a middle anchor
+/// (`fillet_anchor`). Measured on the alphabet of EB Garamond (κ, TTF and UFO): 0.5 left
+/// kinks of 4°–12° at the `h`, `p` and `M` where a gently curved piece meets lines (6 smooth
+/// joins over 0.5° in the UFO); 1 left the `M` (2); 2 left the 136-unit flank at the top of
+/// `h`'s stem when the UFO is drafted alone, at the full tolerance (1); 3 leaves none. Without
+/// a bound the tip of `seven` gets anchors 2 units apart and a curve segment under 2 units in
+/// the TTF.
+const FILLET_MAX_CHORD: f64 = 3.0;
+
 impl Drafter<'_> {
     /// Ends, extrema and curvature peaks, thinned to the minimum spacing.
     pub(super) fn initial_anchors(&self, segs: &[PathSeg], closed: bool) -> Vec<Cand> {
@@ -103,25 +112,29 @@ impl Drafter<'_> {
         out
     }
 
-    /// The middle anchor of a small curved piece that would otherwise keep only its two
-    /// ends, and so be drafted as a straight line: a fillet, where a crossbar meets a stem.
-    /// A κ-curve through two points is their chord, and a fillet shorter than
-    /// [`DraftOptions::min_spacing`](super::DraftOptions::min_spacing) is often within the
-    /// tolerance of its chord, so the refinement would leave it straight, with a corner at
-    /// each end where the original's joins are smooth (EB Garamond's `H` and `4`: corners of
-    /// 24°–84°). With the anchor halfway along it the draft is the quadratic through the
-    /// ends that peaks there, whose end tangents are near the original's (on a quarter
-    /// circle, 5.4° off: the parabola through the ends with its vertex at the middle has its
-    /// control point at `(√2 − ½) r` along the diagonal), and the node outline turns them onto
-    /// the lines. `None` for a piece with a chord over half the minimum spacing or under
-    /// twice the tolerance (the two curve segments would be shorter than a font checker's
-    /// 2 units), or that keeps within a tenth of the tolerance of its chord.
+    /// The middle anchor of a short curved piece that would otherwise keep only its two
+    /// ends, and so be drafted as a straight line: a fillet, where a crossbar meets a stem,
+    /// or a gently curved flank between two lines (the shoulder of EB Garamond's `h`, the
+    /// right foot of its `M`). A κ-curve through two points is their chord, and such a piece
+    /// is often within the tolerance of its chord, so the refinement would leave it straight,
+    /// with a corner at each end where the original's joins are smooth (EB Garamond's `H` and
+    /// `4`: corners of 24°–84°; `h` and `M`: 12° and 4° where a line meets a line). With the
+    /// anchor halfway along it the draft is the quadratic through the ends that peaks there,
+    /// whose end tangents are near the original's (on a quarter circle, 5.4° off: the
+    /// parabola through the ends with its vertex at the middle has its control point at
+    /// `(√2 − ½) r` along the diagonal), and the node outline turns them onto the lines.
+    /// `None` for a piece with a chord over [`FILLET_MAX_CHORD`] minimum spacings or under
+    /// twice the tolerance (the two curve segments would be shorter than a font checker's 2
+    /// units), or that keeps within a tenth of the tolerance of its chord.
     fn fillet_anchor(&self, segs: &[PathSeg]) -> Option<Cand> {
         const SAMPLES: usize = 64;
         let n = segs.len() as f64;
         let (a, b) = (segs.first()?.start(), segs.last()?.end());
         let tol = self.options.tolerance;
-        let chord = self.fillet_chord(segs).filter(|&c| c >= 2.0 * tol)?;
+        let chord = (b - a).hypot();
+        if !(chord >= 2.0 * tol && chord <= FILLET_MAX_CHORD * self.options.min_spacing) {
+            return None;
+        }
         let s_at = |k: usize| n * k as f64 / SAMPLES as f64;
         let pts: Vec<Point> = (0..=SAMPLES).map(|k| eval_at(segs, s_at(k))).collect();
         let bulge = pts

@@ -50,9 +50,10 @@ use solve::{anchors_of, spline_path};
 ///    prominence of at least [`PEAK_PROMINENCE`] over the lowest |κ| on the way to a higher
 ///    peak (or the piece end) on either side. A candidate closer than
 ///    [`DraftOptions::min_spacing`] to one already taken is dropped. A curved open piece
-///    left with its two ends only and shorter than half the minimum spacing — a small
-///    fillet between a stem and a crossbar — gets a third anchor halfway along it, so that it
-///    is not drafted as its chord (see `fillet_anchor`).
+///    left with its two ends only and with a chord of at most three minimum spacings — a
+///    small fillet between a stem and a crossbar, a gentle flank between two lines — gets a
+///    third anchor halfway along it, so that it is not drafted as its chord (see
+///    `fillet_anchor`).
 /// 3. **Refinement.** The piece is solved through its anchors and measured: for each span
 ///    between consecutive anchors, the original sample furthest from the drafted curve. The
 ///    worst sample of every span further than [`DraftOptions::tolerance`] becomes a new
