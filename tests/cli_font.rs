@@ -326,6 +326,35 @@ fn a_cff_font_becomes_truetype_and_ufo() {
     );
 }
 
+/// A UFO written alone (no TrueType headroom) holds every glyph it writes within the
+/// tolerance, measured on the written outline: drafted at the full tolerance, with the
+/// node outline's turns checked one way only, EB Garamond's `three` was written 4.27 units
+/// from the source and its `h` 4.03 (tolerance 4).
+#[test]
+fn a_ufo_written_alone_stays_within_the_tolerance() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/cli-font-ufo");
+    std::fs::create_dir_all(&dir).unwrap();
+    let ufo = dir.join("garamond-h3.ufo");
+    let src =
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fonts/EBGaramond12-Regular-subset.otf");
+    let report = font(&[
+        "font",
+        "--font",
+        src.to_str().unwrap(),
+        "--chars",
+        "h3",
+        "--out",
+        ufo.to_str().unwrap(),
+    ]);
+    let tolerance = report["tolerance"].as_f64().unwrap();
+    assert!((tolerance - 4.0).abs() < 1e-9, "{report}");
+    for g in report["glyphs"].as_array().unwrap() {
+        let written = g["written_hausdorff"].as_f64().unwrap();
+        assert!(written > 0.0 && written <= tolerance, "{g}");
+    }
+    assert_eq!(report["drafted"], 2, "{report}");
+}
+
 /// A source without an `OS/2` table (older Mac fonts) gets one made from `hhea`, the glyph
 /// boxes and the `cmap`; the written font goes to the external validators like the others.
 #[test]

@@ -242,8 +242,8 @@ def draft_glyph(
     distance of a drafted piece from the original, font units), ``within_tolerance``,
     ``fallbacks``, and ``to_json()``: the κ source to keep under ``KAPPA_LIB_KEY``.
 
-    - ``units_per_em`` scales the defaults: ``tolerance`` 0.004 em, anchors at least
-      0.06 em apart.
+    - ``units_per_em`` scales the defaults: ``tolerance`` 0.004 em less 5 % (room for the
+      written outline, as ``kappa font`` drafts a UFO), anchors at least 0.06 em apart.
     - ``scheme`` and ``shape``: for the εκ schemes None (neutral), a number, or "auto"
       (per anchor, matching the original's curvature peak).
     - ``fair``, ``simplify``: mend spurious inflections; drop anchors not needed.

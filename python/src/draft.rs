@@ -2,7 +2,7 @@
 //! and reading contours from SVG.
 
 use kappa::editor::{extract_svg_document, import_svg_paths};
-use kappa::glyph::{draft, DraftOptions, DraftShape};
+use kappa::glyph::{draft, DraftOptions, DraftShape, WRITTEN_HEADROOM};
 use kappa::Scheme;
 use kurbo::{BezPath, Point};
 use pyo3::exceptions::{PyTypeError, PyValueError};
@@ -126,7 +126,9 @@ fn outline(elements: &Bound<'_, PyAny>) -> PyResult<BezPath> {
 ///   apart).
 /// - `scheme`, `shape`: the curve scheme; for εκ schemes None (neutral), a number, or
 ///   "auto" (per anchor, matching the original's curvature peak).
-/// - `tolerance`: refine each piece until it is within this distance (font units).
+/// - `tolerance`: refine each piece until it is within this distance (font units; by
+///   default 0.004 em less `kappa::glyph::WRITTEN_HEADROOM`, 5 %, as `kappa font` drafts a
+///   UFO, so that the written outline stays within 0.004 em).
 /// - `fair`, `simplify`: mend spurious inflections; drop anchors not needed.
 /// - `extremum_tangents`: hold horizontal and vertical tangents at extremum anchors (on,
 ///   as in `kappa font`).
@@ -152,9 +154,8 @@ pub fn draft_elements(
     let scheme = self::scheme(scheme)?;
     let shape = draft_shape(shape, scheme)?;
     let mut options = DraftOptions::for_units_per_em(units_per_em).with_scheme(scheme, shape);
-    if let Some(t) = tolerance {
-        options.tolerance = t;
-    }
+    // As `kappa font` drafts a UFO: room for the written outline within the tolerance.
+    options.tolerance = tolerance.unwrap_or(options.tolerance * (1.0 - WRITTEN_HEADROOM));
     options.fair = fair;
     options.simplify = simplify;
     options.extremum_tangents = extremum_tangents;

@@ -74,7 +74,7 @@ pub use export::{is_quadratic, quantize, to_quadratic, to_svg, Quadratic};
 pub use font::{compile_font, FONT_FAMILY};
 #[cfg(feature = "font")]
 pub use import::{FontOutlines, Glyph};
-pub use nodes::{anchor_outline, NodeOutline};
+pub use nodes::{anchor_outline, NodeOutline, WRITTEN_HEADROOM, WRITTEN_SAMPLES};
 #[cfg(all(feature = "render", feature = "font"))]
 pub use picture::{word_figure, FIGURE_WORD};
 #[cfg(feature = "render")]

@@ -43,7 +43,25 @@ pub struct NodeOutline {
     /// Nodes added where a curve passed a horizontal or vertical extremum between two
     /// nodes (see [`anchor_outline`]).
     pub extrema_added: usize,
+    /// The Hausdorff distance between the written outline and the original (both ways,
+    /// [`WRITTEN_SAMPLES`] samples per segment, font units: [`hausdorff`](super::hausdorff)).
+    pub hausdorff: f64,
 }
+
+/// Samples per segment of [`NodeOutline::hausdorff`].
+pub const WRITTEN_SAMPLES: usize = 32;
+
+/// The part of the tolerance that drafts written as a UFO leave for their written outline
+/// (`kappa font` and the Python package's `draft_glyph` draft at `(1 − WRITTEN_HEADROOM)` of
+/// the tolerance when no TrueType font is written): the drafts' Hausdorff distance is
+/// sampled, and [`anchor_outline`]'s cubic fits add up to its `accuracy`. Drafted at the full
+/// tolerance, EB Garamond's `h` (3.96 units drafted, against 4) was written 4.03 units from
+/// its source, and 63 of the alphabet's 65 glyphs within 0.004 em.
+pub const WRITTEN_HEADROOM: f64 = 0.05;
+
+/// How many times [`anchor_outline`] tightens the budget of its turns when the written
+/// outline strays beyond the tolerance.
+const TIGHTENINGS: usize = 3;
 
 /// The drafted glyph with its anchors as nodes: each span between consecutive anchors is one
 /// cubic (exact where the span is one polynomial segment, otherwise kurbo's `fit_to_cubic`
@@ -71,7 +89,43 @@ pub struct NodeOutline {
 /// span. Elsewhere the written curve is the draft within `max_error`. (Constraining the
 /// tangent inside the solve, which would keep G2 by giving up the peak condition, is not
 /// built.)
+///
+/// **Within the tolerance, both ways.** The turns are checked one way (samples of the turned
+/// curve near the original), so together they can leave part of the original further than
+/// `tolerance` from the written outline (EB Garamond's `three` at 4.27 units, `h` at 4.03,
+/// against a tolerance of 4). The written outline's Hausdorff distance from `original` is
+/// measured ([`NodeOutline::hausdorff`]); where it exceeds `tolerance` the outline is written
+/// again with the turns' budget lowered by the excess (and by `accuracy`), up to three times,
+/// and the nearest outline is kept.
 pub fn anchor_outline(
+    drafted: &DraftedGlyph,
+    original: &BezPath,
+    accuracy: f64,
+    tolerance: f64,
+) -> NodeOutline {
+    let mut budget = tolerance;
+    let mut best: Option<NodeOutline> = None;
+    for _ in 0..=TIGHTENINGS {
+        let mut out = nodes_within(drafted, original, accuracy, budget);
+        out.hausdorff = super::hausdorff(&out.path, original, WRITTEN_SAMPLES);
+        let excess = out.hausdorff - tolerance;
+        if best.as_ref().map_or(true, |b| out.hausdorff < b.hausdorff) {
+            best = Some(out);
+        }
+        // (Also stops on a NaN distance.)
+        if excess.is_nan() || excess <= 0.0 {
+            break;
+        }
+        budget -= excess + accuracy;
+        if budget.is_nan() || budget <= 0.0 {
+            break;
+        }
+    }
+    best.expect("one outline is always written")
+}
+
+/// [`anchor_outline`] with the turns' budget `tolerance`, unmeasured.
+fn nodes_within(
     drafted: &DraftedGlyph,
     original: &BezPath,
     accuracy: f64,
@@ -88,6 +142,7 @@ pub fn anchor_outline(
         split_spans: 0,
         snapped: 0,
         extrema_added: 0,
+        hausdorff: 0.0,
     };
     for contour in &drafted.contours {
         // Each piece's curves (cubics and lines), and which of their start nodes are

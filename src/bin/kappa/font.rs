@@ -8,8 +8,8 @@ use std::time::Instant;
 
 use clap::Args;
 use kappa::glyph::{
-    anchor_outline, draft, drawn_glyph_ids, hausdorff, rebuild_ttf, rebuild_ufo, DraftOptions,
-    DraftShape, DraftedGlyph, FontOutlines, NodeOutline, RebuildOptions,
+    anchor_outline, draft, drawn_glyph_ids, rebuild_ttf, rebuild_ufo, DraftOptions, DraftShape,
+    DraftedGlyph, FontOutlines, NodeOutline, RebuildOptions,
 };
 use kappa::Scheme;
 use kurbo::BezPath;
@@ -21,9 +21,6 @@ use crate::glyph::parse_shape;
 
 /// How closely the written outline, with the anchors as nodes, follows the draft (em).
 const NODE_ACCURACY: f64 = 1e-4;
-
-/// Samples per segment of the written outline's Hausdorff distance to the glyph.
-const HAUSDORFF_SAMPLES: usize = 32;
 
 /// Draft the glyphs of a whole font and write it back as TrueType and/or UFO.
 #[derive(Debug, Args)]
@@ -53,7 +50,8 @@ const HAUSDORFF_SAMPLES: usize = 32;
         \"format\"}]}. 'char' is null for a glyph no character maps to. The drafts are held to \
         'draft_tolerance': --tolerance, less --quad-tolerance and half a grid diagonal when a \
         .ttf is written (its quadratics and integer grid must stay within --tolerance too; \
-        at most half of it); 'within_tolerance' and 'hausdorff' are the draft's, \
+        at most half of it), else less 5 % (for the written outline's fits); \
+        'within_tolerance' and 'hausdorff' are the draft's, \
         'written_hausdorff' that of the written outline before the grid.\n\n\
         On any error (unreadable font, a character the font lacks, unknown extension, bad \
         option) the exit code is 2, stderr holds one 'kappa: error:' line and stdout stays \
@@ -195,13 +193,16 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
         }
         options.tolerance = t;
     }
-    // The written fonts are held to the tolerance: a TrueType font also converts cubics to
-    // quadratics and rounds every point to the grid, so its drafts leave room for both.
+    // The written fonts are held to the tolerance: the drafts leave room for the written
+    // outline's fits and for the sampling of their own measure (`WRITTEN_HEADROOM`), and a
+    // TrueType font also converts cubics to quadratics and rounds every point to the grid.
     let tolerance = options.tolerance;
-    if formats.contains(&Format::Ttf) {
-        let headroom = args.quad_tolerance + 0.5 * core::f64::consts::SQRT_2;
-        options.tolerance = (tolerance - headroom).max(0.5 * tolerance);
-    }
+    let headroom = if formats.contains(&Format::Ttf) {
+        args.quad_tolerance + 0.5 * core::f64::consts::SQRT_2
+    } else {
+        kappa::glyph::WRITTEN_HEADROOM * tolerance
+    };
+    options.tolerance = (tolerance - headroom).max(0.5 * tolerance);
     let chars = font.char_map();
     let drawn = drawn_glyph_ids(&data).map_err(|e| Failure::new(e).context(args.font.display()))?;
     let ids: Vec<u16> = match &args.chars {
@@ -236,7 +237,7 @@ pub fn run(args: &FontArgs) -> Result<ExitCode> {
         let outline = font.outline(id).map_err(Failure::new)?;
         let drafted = draft(&outline, &options).ok().map(|d| {
             let nodes = anchor_outline(&d, &outline, NODE_ACCURACY * upem, options.tolerance);
-            let written = hausdorff(&nodes.path, &outline, HAUSDORFF_SAMPLES);
+            let written = nodes.hausdorff;
             (d, nodes, written)
         });
         Ok((drafted, start.elapsed().as_secs_f64()))
