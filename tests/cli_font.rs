@@ -17,6 +17,10 @@ fn dejavu() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fonts/DejaVuSans.ttf")
 }
 
+fn garamond() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fonts/EBGaramond12-Regular-subset.otf")
+}
+
 /// The directory the external validators check.
 fn font_check() -> PathBuf {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/font-check");
@@ -272,8 +276,7 @@ fn a_cff_font_becomes_truetype_and_ufo() {
         dir.join("garamond-kappa.ttf"),
         dir.join("garamond-kappa.ufo"),
     );
-    let src =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fonts/EBGaramond12-Regular-subset.otf");
+    let src = garamond();
     let report = font(&[
         "font",
         "--font",
@@ -335,8 +338,7 @@ fn a_ufo_written_alone_stays_within_the_tolerance() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/cli-font-ufo");
     std::fs::create_dir_all(&dir).unwrap();
     let ufo = dir.join("garamond-h3.ufo");
-    let src =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fonts/EBGaramond12-Regular-subset.otf");
+    let src = garamond();
     let report = font(&[
         "font",
         "--font",
@@ -415,9 +417,7 @@ const ALPHABET: &str = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123
 fn the_alphabet_is_drafted_for_the_quality_check() {
     let dir = font_check().join("alphabet");
     std::fs::create_dir_all(&dir).unwrap();
-    let garamond =
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/fonts/EBGaramond12-Regular-subset.otf");
-    for (name, src) in [("dejavu", dejavu()), ("garamond", garamond)] {
+    for (name, src) in [("dejavu", dejavu()), ("garamond", garamond())] {
         let (ttf, ufo) = (
             dir.join(format!("{name}.ttf")),
             dir.join(format!("{name}.ufo")),
