@@ -20,20 +20,37 @@ pub(super) struct Homotopy {
     pub(super) first_step: f64,
     /// The factor of the step after a converged one.
     pub(super) growth: f64,
+    /// The iterations spent before the homotopy starts, which count towards
+    /// `max_iterations`.
+    pub(super) spent: usize,
 }
 
 impl<const D: usize, const B: usize> Workspace<D, B> {
     /// Solve from a cold start: the [`cascade`](Self::cascade) of direct attempts and
-    /// shape continuations, then continuation from smoothed and jittered input points
-    /// ([`points`](super::points)) where all of those fail. The total iteration count is reported, and the
-    /// best state found is kept if nothing converges.
+    /// shape continuations, then the [`nudge`](super::nudge) continuation out of
+    /// inflections through input points, then continuation from smoothed and jittered input
+    /// points ([`points`](super::points)) where all of those fail. Where points lie near
+    /// their neighbours' line but none on it, the cascade leaves the nudge its
+    /// [`BUDGET`](super::tuning::nudge::BUDGET) (a quarter of a smaller budget): such a cascade can spend all it is given
+    /// (the 12-point whole-pixel lemniscate with its crossings 1e-9 of its size off their
+    /// lines: 4 000 iterations, then the nudge solves it in 300). The total iteration count
+    /// is reported, and the best state found is kept if nothing converges.
     pub(crate) fn solve_cold(
         &mut self,
         prob: &Problem<D>,
         set: &Settings,
         scratch: &mut Problem<D>,
     ) -> Outcome {
-        let out = self.cascade(prob, set, scratch, true);
+        let reserve = if super::nudge::near_only(prob) {
+            super::tuning::nudge::BUDGET.min(set.max_iterations / 4)
+        } else {
+            0
+        };
+        let first = Settings {
+            max_iterations: set.max_iterations.saturating_sub(reserve),
+            ..*set
+        };
+        let out = self.cascade(prob, &first, scratch, true);
         if out.converged || out.iterations >= set.max_iterations {
             return out;
         }
@@ -189,8 +206,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             step_budget: descent.step_budget,
             first_step: descent.first_step,
             growth: 1.5,
+            spent: total,
         };
-        self.follow(prob, scratch, blend, budget, steps, total)
+        self.follow(prob, scratch, blend, |_, _, _, _| false, budget, steps)
     }
 
     /// Follows a homotopy from `s = 0`, solved in the current state, to `s = 1`: `blend`
@@ -204,16 +222,18 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// moves the input points, each step first moves every control point `c_j` with its
     /// point `p_j` (as a warm re-solve does): a segment near its collapsed limit has `c_j`
     /// within its tiny extent of `p_j`, and left behind it would start Newton on the wrong
-    /// side of the point.
+    /// side of the point. Then `predict(state, moving, s, s_try)` may move the unknowns
+    /// towards the step's solution (`true` if it did).
     pub(super) fn follow(
         &mut self,
         prob: &Problem<D>,
         moving: &mut Problem<D>,
         mut blend: impl FnMut(&mut Problem<D>, f64),
+        mut predict: impl FnMut(&mut State<D>, &Problem<D>, f64, f64) -> bool,
         budget: impl Fn(usize, usize) -> Settings,
         steps: Homotopy,
-        mut total: usize,
     ) -> Outcome {
+        let mut total = steps.spent;
         let (mut s, mut ds) = (0.0f64, steps.first_step);
         let mut saved = self.state.clone();
         // The points of the saved state.
@@ -227,6 +247,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             let s_try = (s + ds).min(1.0);
             blend(moving, s_try);
             carry(&mut self.state.c, &moving.p, &at);
+            if predict(&mut self.state, moving, s, s_try) {
+                self.invalidate();
+            }
             let step = self.solve(moving, &budget(total, steps.step_budget), 0, false);
             total += step.iterations;
             if step.converged {

@@ -18,7 +18,7 @@
 //! iterations (the 12-point one of radius 50 in 6, at a relative residual of 2e-14). The
 //! step changes no state that converged before it: it runs only where everything else failed.
 
-use super::problem::{Outcome, Problem, Settings};
+use super::problem::{Outcome, Problem, Settings, State};
 use super::tuning::collapse::{COLLAPSING, ROUNDS, ROUND_BUDGET, SHRINK};
 use super::tuning::system::LAMBDA_MIN;
 use super::Workspace;
@@ -74,17 +74,32 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             if !(collapsing && super::nudge::collinear_at(prob, j)) {
                 continue;
             }
-            let p = prob.p[j];
-            let c = &mut self.state.c[j];
-            *c = core::array::from_fn(|k| p[k] + SHRINK * (c[k] - p[k]));
-            let i = if j == 0 { n - 1 } else { j - 1 };
-            self.state.lam[i] = 1.0 - (SHRINK * alpha).max(LAMBDA_MIN);
-            self.state.lam[j] = (SHRINK * beta).max(LAMBDA_MIN);
+            self.state.shrink_block(prob, j, SHRINK);
             any = true;
         }
         if any {
             self.invalidate();
         }
         any
+    }
+}
+
+impl<const D: usize> State<D> {
+    /// Moves block `j` along the collapse law of the module doc by the factor `r`: its
+    /// ratios `α = 1 - λ_{j-1}`, `β = λ_j` and its offset `c_j - p_j` scaled by `r`, `t_j`
+    /// kept (the ratios held above [`LAMBDA_MIN`]).
+    pub(super) fn shrink_block(&mut self, prob: &Problem<D>, j: usize, r: f64) {
+        let n = self.t.len();
+        let alpha = 1.0 - self.ratio(prob, j as isize - 1);
+        let p = prob.p[j];
+        let c = &mut self.c[j];
+        *c = core::array::from_fn(|k| p[k] + r * (c[k] - p[k]));
+        if prob.closed || j > 0 {
+            let i = if j == 0 { n - 1 } else { j - 1 };
+            self.lam[i] = 1.0 - (r * alpha).max(LAMBDA_MIN);
+        }
+        if prob.closed || j + 1 < n {
+            self.lam[j] = (r * self.lam[j]).max(LAMBDA_MIN);
+        }
     }
 }

@@ -305,8 +305,9 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
             step_budget: super::tuning::cascade::STEP_BUDGET,
             first_step: 0.25,
             growth: 1.5,
+            spent: total,
         };
-        self.follow(prob, &mut moving, blend, budget, steps, total)
+        self.follow(prob, &mut moving, blend, |_, _, _, _| false, budget, steps)
     }
 
     /// The unit tangent of block `j`'s segment at the parameter a tangent `at` there

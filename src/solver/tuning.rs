@@ -226,6 +226,17 @@ pub(crate) mod nudge {
     /// without a nudge (the sweeps of `tests/collinear.rs`).
     pub(crate) const COLLINEAR: f64 = 1e-9;
 
+    /// Sine below which a point off its neighbours' line is still nudged (further to its own
+    /// side, then followed back to the input): the band next to the collinear case where the
+    /// κ solve can stall (at sines of 6e-9 on the lemniscate of `tests/inflection.rs`; the
+    /// wave's sweeps converge directly down to 1e-7 of its size). Dense samples of a smooth
+    /// curve have points at sines of 1e-4 where it is nearly straight, and ordinary solves.
+    pub(crate) const NEAR: f64 = 1e-6;
+
+    /// Ratios `1 - λ_{j-1}`, `λ_j` below which a nudged point's segment counts as collapsing
+    /// onto it, and each step of the path first shrinks it with the nudge.
+    pub(crate) const PREDICT: f64 = 0.1;
+
     /// The first nudge, as a fraction of the distance to the nearer neighbour: on the 8-point
     /// lemniscate (κ) nudges of 1e-3 and 1e-4 of it converged cold, 2e-5 did not.
     pub(crate) const NUDGE: f64 = 1e-2;
