@@ -304,8 +304,9 @@ fn a_cff_font_becomes_truetype_and_ufo() {
         .map(|g| g["glyph_id"].as_u64().unwrap() as u16)
         .collect();
     // Every glyph is now TrueType: quadratics on the grid, outer contours clockwise; the
-    // glyphs not drafted are the source's cubics within the conversion tolerance and the
-    // grid (0.5 + 0.5√2 units).
+    // glyphs not drafted are the source's cubics within the conversion tolerance, the grid
+    // and its smooth-node pass (0.5 + √2/2 + √2/2 units: a control point moved by up to √2
+    // moves a quadratic by at most half that; measured, 1.52).
     for id in 0..source.glyph_count() {
         assert_eq!(out.glyph_name(id), source.glyph_name(id));
         assert_eq!(out.advance(id), source.advance(id));
@@ -319,7 +320,7 @@ fn a_cff_font_becomes_truetype_and_ufo() {
         }
         if !drafted.contains(&id) && !a.elements().is_empty() {
             let d = hausdorff(&a, &source.outline(id).unwrap(), 64);
-            assert!(d <= 0.5 + 0.75, "glyph {id}: {d}");
+            assert!(d <= 0.5 + 2f64.sqrt(), "glyph {id}: {d}");
         }
     }
     let ufo_font = norad::Font::load(&ufo).unwrap();

@@ -401,12 +401,20 @@ fn glyph_font_round_trip() {
             let expected = quantize(&g.path);
             assert_eq!(back.path.elements(), expected.elements(), "{}", g.ch);
             assert_eq!(back.advance, g.advance.round());
-            // The grid moves no point by more than √2/2 units.
+            // The grid moves no on-curve point by more than 3√2/2 units (rounding, then a
+            // unit per coordinate for a smooth node, or the mean of two control points'
+            // moves for an implied one), and most by at most √2/2 (rounding alone).
+            let mut rounded = 0;
+            let mut all = 0;
             for (a, b) in g.path.elements().iter().zip(expected.elements()) {
                 if let (Some(p), Some(q)) = (a.end_point(), b.end_point()) {
-                    assert!((p - q).hypot() <= 0.5f64.sqrt() + 1e-12);
+                    let d = (p - q).hypot();
+                    assert!(d <= 1.5 * 2f64.sqrt() + 1e-12, "{}: {d}", g.ch);
+                    rounded += usize::from(d <= 0.5f64.sqrt() + 1e-12);
+                    all += 1;
                 }
             }
+            assert!(rounded * 10 >= all * 9, "{}: {rounded}/{all}", g.ch);
         }
     }
     let mut cubic = BezPath::new();

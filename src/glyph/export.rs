@@ -80,39 +80,6 @@ pub fn to_quadratic(path: &BezPath, tolerance: f64) -> Result<Quadratic, Error> 
     })
 }
 
-/// The outline on the TrueType integer grid: every coordinate rounded to the nearest integer,
-/// halves up (`⌊x + ½⌋`, the OpenType rounding of write-fonts' `OtRound`). A `glyf` table
-/// stores integer font units, so this is exactly what a compiled font holds; each point moves
-/// by at most `√2 / 2` font units. A quadratic whose control point lands on one of its end
-/// points is a straight line and is written as one (a tiny quadratic that rounds so would
-/// otherwise stay a curve segment of a unit or two).
-pub fn quantize(path: &BezPath) -> BezPath {
-    let r = |p: Point| Point::new((p.x + 0.5).floor(), (p.y + 0.5).floor());
-    let mut current = Point::ZERO;
-    let mut start = Point::ZERO;
-    path.elements()
-        .iter()
-        .map(|el| {
-            let el = match *el {
-                PathEl::MoveTo(p) => {
-                    start = r(p);
-                    PathEl::MoveTo(start)
-                }
-                PathEl::LineTo(p) => PathEl::LineTo(r(p)),
-                PathEl::QuadTo(a, b) if r(a) == current || r(a) == r(b) => PathEl::LineTo(r(b)),
-                PathEl::QuadTo(a, b) => PathEl::QuadTo(r(a), r(b)),
-                PathEl::CurveTo(a, b, c) => PathEl::CurveTo(r(a), r(b), r(c)),
-                PathEl::ClosePath => PathEl::ClosePath,
-            };
-            current = match el {
-                PathEl::ClosePath => start,
-                e => e.end_point().unwrap_or(current),
-            };
-            el
-        })
-        .collect()
-}
-
 /// A standalone SVG document of an outline in font units (y up): the path filled with the
 /// non-zero rule, flipped by a `scale(1 -1)` transform so that it shows upright, in a view of
 /// its bounding box with a margin of `margin` font units.

@@ -12,7 +12,8 @@ use write_fonts::tables::post::Post;
 use write_fonts::types::{FWord, Fixed, GlyphId, NameId, UfWord};
 use write_fonts::FontBuilder;
 
-use super::export::{is_quadratic, quantize, FontGlyph};
+use super::export::{is_quadratic, FontGlyph};
+use super::grid::quantize;
 use crate::Error;
 
 /// The family name [`compile_font`] uses when given an empty one. (The vendored test font's

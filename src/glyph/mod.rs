@@ -49,6 +49,7 @@ mod draft;
 mod export;
 #[cfg(feature = "font")]
 mod font;
+mod grid;
 #[cfg(feature = "font")]
 mod import;
 mod nodes;
@@ -69,9 +70,10 @@ pub use draft::{
 };
 #[cfg(feature = "font")]
 pub use export::{from_glif, to_glif, to_norad_glyph, write_ufo, FontGlyph};
-pub use export::{is_quadratic, quantize, to_quadratic, to_svg, Quadratic};
+pub use export::{is_quadratic, to_quadratic, to_svg, Quadratic};
 #[cfg(feature = "font")]
 pub use font::{compile_font, FONT_FAMILY};
+pub use grid::quantize;
 #[cfg(feature = "font")]
 pub use import::{FontOutlines, Glyph};
 pub use nodes::{anchor_outline, NodeOutline, WRITTEN_HEADROOM, WRITTEN_SAMPLES};

@@ -17,7 +17,8 @@ use write_fonts::types::{FWord, GlyphId, LongDateTime, NameId, Tag, UfWord};
 use write_fonts::FontBuilder;
 
 use super::direction::{orient, Direction};
-use super::export::{quantize, to_quadratic};
+use super::export::to_quadratic;
+use super::grid::quantize;
 use super::import::FontOutlines;
 use crate::Error;
 
