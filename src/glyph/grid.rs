@@ -11,6 +11,10 @@ const SMOOTH_TURN: f64 = 0.1 * core::f64::consts::PI / 180.0;
 /// moves a node itself only where its control points alone leave more, and only to less.
 const SMOOTH_NODE: f64 = 0.5 * core::f64::consts::PI / 180.0;
 
+/// How much more, in radians, the smooth-node pass may turn a corner at the far end of a
+/// segment it moves (1°).
+const CORNER_SLACK: f64 = core::f64::consts::PI / 180.0;
+
 /// Curve segments on the grid shorter than this (chord, font units) are not made by the
 /// smooth-node pass.
 const SHORT_CHORD: f64 = 2.0;
@@ -39,13 +43,13 @@ const SMOOTH_SINE: f64 = 1e-2;
 ///   that rounding left smooth (an extremum with its handles on the axis) holds its control
 ///   points on their line through it. Then each other one moves its control points by up
 ///   to a unit per coordinate from their rounded positions (a held one only along its
-///   axis, or not at all), and the node itself likewise where both its segments are
-///   quadratics and the control points alone leave it turned by more than 0.5°: to the
+///   axis, or not at all), and the node itself likewise where one of its segments is a
+///   quadratic and the control points alone leave it turned by more than 0.5°: to the
 ///   positions nearest the unrounded ones among those that turn the least (turns below
-///   0.1° counting as one), if that is less than rounding alone, without turning the nodes
-///   at the far ends of its segments more or making a curve segment shorter than 2 units.
-///   A line's ends never move. On that alphabet, the smooth source joins the TrueType font
-///   turns by more than 0.5° went from 62 to 19, with every glyph still within 0.004 em.
+///   0.1° counting as one), if that is less than rounding alone, without turning the
+///   smooth nodes at the far ends of its segments more (corners by at most 1° more) or
+///   making a curve segment shorter than 2 units. A line's far end never moves. On that alphabet, the smooth source joins the TrueType font
+///   turns by more than 0.5° went from 62 to 16, with every glyph still within 0.004 em.
 /// - A quadratic whose control point lands on one of its end points is a straight line and
 ///   is written as one (a tiny quadratic that rounds so would otherwise stay a curve segment
 ///   of a unit or two); its ends are then rounded on their own.
@@ -339,41 +343,48 @@ impl Grid {
     }
 
     /// Aligns the stored smooth node between segments `i` and `j`: its control points moved
-    /// as `hold` allows, and the node itself by up to a unit per coordinate where both its
-    /// segments are quadratics and that is needed to turn by less than [`SMOOTH_NODE`]
+    /// as `hold` allows, and the node itself by up to a unit per coordinate where one of its
+    /// segments is a quadratic and that is needed to turn by less than [`SMOOTH_NODE`]
     /// (a move kept only if it does; across the node's tangent it stays within the `√2 / 2`
     /// of rounding), to the positions nearest the unrounded ones (the node's move across its
     /// tangent weighing 17 times) among those that turn the least (all turns below
     /// [`SMOOTH_TURN`] counting as one), if that is [`SMOOTH_TURN`] less than rounding
-    /// alone. No move turns the stored nodes at the segments' far ends more, or makes a
-    /// curve segment shorter than [`SHORT_CHORD`] that was not before rounding.
+    /// alone. No move turns the stored smooth nodes at the segments' far ends more (corners
+    /// by at most [`CORNER_SLACK`] more), or makes a curve segment shorter than
+    /// [`SHORT_CHORD`] that was not before rounding.
     fn align(&mut self, hold: &[Hold], i: usize, j: usize) {
         let moves = |k: usize, g: &Self| match g.control(k) {
             Some(_) => hold[k].moves(),
             None => vec![Vec2::ZERO],
         };
         let (ma, mb) = (moves(i, self), moves(j, self));
-        let node_moves = if self.control(i).is_some() && self.control(j).is_some() {
+        let node_moves = if self.control(i).is_some() || self.control(j).is_some() {
             Hold::Free.moves()
         } else {
             Vec::new()
         };
         let before = turn(self.incoming(i), self.end(i), self.outgoing(j));
         let (a0, b0, n0) = (self.rc[i], self.rc[j], self.end(i));
-        // The stored nodes at the far ends of the two segments turn no more than before.
+        // The stored nodes at the far ends of the two segments turn no more than before if
+        // they were smooth, and by at most `CORNER_SLACK` more if they are corners.
         let (far_in, far_out) = (self.prev(i).filter(|&p| !self.implied[p]), self.next(j));
         let far_out = far_out.filter(|_| !self.implied[j]);
+        let slack = |a: Option<usize>, b: Option<usize>| match (a, b) {
+            (Some(a), Some(b)) if !self.smooth_before_rounding(a, b) => CORNER_SLACK,
+            _ => 1e-12,
+        };
+        let slack = (slack(far_in, Some(i)), slack(Some(j), far_out));
         let far = |g: &Self| {
             let at = |a: usize, b: usize| turn(g.incoming(a), g.end(a), g.outgoing(b));
             (far_in.map(|p| at(p, i)), far_out.map(|q| at(j, q)))
         };
         let far0 = far(self);
         let worse = |now: (Option<f64>, Option<f64>)| {
-            let w = |x: Option<f64>, y: Option<f64>| match (x, y) {
-                (Some(x), Some(y)) => x > y + 1e-12,
+            let w = |x: Option<f64>, y: Option<f64>, slack: f64| match (x, y) {
+                (Some(x), Some(y)) => x > y + slack,
                 _ => false,
             };
-            w(now.0, far0.0) || w(now.1, far0.1)
+            w(now.0, far0.0, slack.0) || w(now.1, far0.1, slack.1)
         };
         // The unit normal of the node's tangent before rounding.
         let normal = {
