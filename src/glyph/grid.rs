@@ -589,6 +589,34 @@ mod tests {
     }
 
     #[test]
+    fn a_smooth_join_of_a_line_and_a_curve_stays_smooth() {
+        // A line from a corner at the origin into a smooth join with a quadratic whose
+        // handle is 3.5 units long, along the line: rounded alone, the join turns by 8.1°.
+        let node = Point::new(30.45, 10.45);
+        let d = node.to_vec2().normalize();
+        let handle = node + d * 3.5;
+        let mut p = BezPath::new();
+        p.move_to((0.0, 0.0));
+        p.line_to(node);
+        p.quad_to(handle, Point::new(60.0, 0.0));
+        p.close_path();
+        let rounded = turn(Point::ZERO, round(node), round(handle));
+        assert!(rounded.to_degrees() > 0.5, "{}", rounded.to_degrees());
+        let q = quantize(&p);
+        let els = q.elements();
+        let (PathEl::LineTo(m), PathEl::QuadTo(b, _)) = (els[1], els[2]) else {
+            panic!("{els:?}")
+        };
+        let after = turn(Point::ZERO, m, b);
+        assert!(after.to_degrees() < 0.5, "{}", after.to_degrees());
+        // The node stays within rounding of its place across the line.
+        let normal = Vec2::new(-d.y, d.x);
+        assert!((m - node).dot(normal).abs() <= core::f64::consts::FRAC_1_SQRT_2);
+        assert!((m - round(node)).hypot() <= 2f64.sqrt());
+        assert!((b - round(handle)).hypot() <= 2f64.sqrt());
+    }
+
+    #[test]
     fn a_quadratic_onto_its_end_becomes_a_line() {
         let mut p = BezPath::new();
         p.move_to((0.0, 0.0));
