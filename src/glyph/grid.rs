@@ -48,8 +48,9 @@ const SMOOTH_SINE: f64 = 1e-2;
 ///   positions nearest the unrounded ones among those that turn the least (turns below
 ///   0.1° counting as one), if that is less than rounding alone, without turning the
 ///   smooth nodes at the far ends of its segments more (corners by at most 1° more) or
-///   making a curve segment shorter than 2 units. A line's far end never moves. On that alphabet, the smooth source joins the TrueType font
-///   turns by more than 0.5° went from 62 to 16, with every glyph still within 0.004 em.
+///   making a curve segment shorter than 2 units. A line's far end never moves. On that
+///   alphabet, the smooth source joins the TrueType font turns by more than 0.5° went from
+///   62 to 16, with every glyph still within 0.004 em.
 /// - A quadratic whose control point lands on one of its end points is a straight line and
 ///   is written as one (a tiny quadratic that rounds so would otherwise stay a curve segment
 ///   of a unit or two); its ends are then rounded on their own.
@@ -388,7 +389,8 @@ impl Grid {
         };
         // The unit normal of the node's tangent before rounding.
         let normal = {
-            let u = self.segs[i].1 - self.segs[i].0.unwrap_or(self.start_unrounded(i));
+            let from = self.segs[i].0.or(self.start_unrounded(i));
+            let u = self.segs[i].1 - from.unwrap_or_default();
             Vec2::new(-u.y, u.x) / u.hypot()
         };
         let cost = |g: &Self| {
@@ -412,7 +414,8 @@ impl Grid {
             }
             let kept = best;
             // (Across the tangent, the node moves no more than rounding may move it.)
-            if ((n0 + dn) - self.segs[i].1).dot(normal).abs() > core::f64::consts::FRAC_1_SQRT_2 {
+            let across = ((n0 + dn) - self.segs[i].1).dot(normal).abs();
+            if across > core::f64::consts::FRAC_1_SQRT_2 {
                 continue;
             }
             self.moved[i] = Some(n0 + dn);
@@ -458,12 +461,8 @@ impl Grid {
     /// Whether the node between segments `i` and `j` is stored and smooth before rounding.
     fn smooth_before_rounding(&self, i: usize, j: usize) -> bool {
         let node = self.segs[i].1;
-        let from = match self.prev(i) {
-            Some(p) => self.segs[p].1,
-            None => match self.start {
-                Some(s) => s,
-                None => return false,
-            },
+        let Some(from) = self.start_unrounded(i) else {
+            return false;
         };
         let u = node - self.segs[i].0.unwrap_or(from);
         let v = self.segs[j].0.unwrap_or(self.segs[j].1) - node;
@@ -490,30 +489,26 @@ impl Grid {
         near.iter().any(|&k| {
             let short = self.control(k).is_some()
                 && (self.end(k) - self.start_of(k)).hypot() < SHORT_CHORD
-                && (self.segs[k].1 - self.start_unrounded(k)).hypot() >= SHORT_CHORD;
+                && (self.segs[k].1 - self.start_unrounded(k).unwrap_or_default()).hypot()
+                    >= SHORT_CHORD;
             self.degenerate(k) || short
         })
     }
 
-    /// The start point of segment `i` before rounding.
-    fn start_unrounded(&self, i: usize) -> Point {
+    /// The start point of segment `i` before rounding (`None` for the first segment of a
+    /// contour that continues the previous one).
+    fn start_unrounded(&self, i: usize) -> Option<Point> {
         match self.prev(i) {
-            Some(p) => self.segs[p].1,
-            None => self.start.unwrap_or(Point::ZERO),
+            Some(p) => Some(self.segs[p].1),
+            None => self.start,
         }
     }
 
     fn write(&self, out: &mut BezPath) {
-        let n = self.n();
         if self.start.is_some() {
-            let first = if self.wraps {
-                self.end(n - 1)
-            } else {
-                self.start.map_or(Point::ZERO, round)
-            };
-            out.push(PathEl::MoveTo(first));
+            out.push(PathEl::MoveTo(self.start_of(0)));
         }
-        for i in 0..n {
+        for i in 0..self.n() {
             let p = self.end(i);
             out.push(match self.control(i) {
                 Some(a) => PathEl::QuadTo(a, p),
@@ -528,11 +523,7 @@ impl Grid {
 
 /// The angle, in radians, between `node - a` and `b - node` (π where one is zero).
 fn turn(a: Point, node: Point, b: Point) -> f64 {
-    let (u, v) = (node - a, b - node);
-    if u.hypot2() == 0.0 || v.hypot2() == 0.0 {
-        return core::f64::consts::PI;
-    }
-    u.cross(v).atan2(u.dot(v)).abs()
+    super::nodes::turn_angle(node - a, b - node).unwrap_or(core::f64::consts::PI)
 }
 
 #[cfg(test)]

@@ -478,7 +478,7 @@ fn turn_within(dir: Vec2, h: Vec2) -> Option<f64> {
 }
 
 /// The angle in `[0, π]` from direction `dir` to handle `h`; `None` if either is zero.
-fn turn_angle(dir: Vec2, h: Vec2) -> Option<f64> {
+pub(super) fn turn_angle(dir: Vec2, h: Vec2) -> Option<f64> {
     (dir.hypot() > 0.0 && h.hypot() > 0.0).then(|| dir.cross(h).atan2(dir.dot(h)).abs())
 }
 

@@ -31,9 +31,10 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// inflections through input points, then continuation from smoothed and jittered input
     /// points ([`points`](super::points)) where all of those fail. Where points lie near
     /// their neighbours' line but none on it, the cascade leaves the nudge its
-    /// [`BUDGET`](super::tuning::nudge::BUDGET) (a quarter of a smaller budget): such a cascade can spend all it is given
-    /// (the 12-point whole-pixel lemniscate with its crossings 1e-9 of its size off their
-    /// lines: 4 000 iterations, then the nudge solves it in 300). The total iteration count
+    /// [`BUDGET`](super::tuning::nudge::BUDGET) (a quarter of a smaller budget): such a
+    /// cascade can spend all it is given (the 12-point whole-pixel lemniscate with its
+    /// crossings 1e-9 of its size off their lines: 4 000 iterations, then the nudge solves
+    /// it in 260). The total iteration count
     /// is reported, and the best state found is kept if nothing converges.
     pub(crate) fn solve_cold(
         &mut self,
@@ -214,12 +215,12 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
     /// Follows a homotopy from `s = 0`, solved in the current state, to `s = 1`: `blend`
     /// sets `moving` to the problem at `s`; steps start at `steps.first_step`, grow by
     /// `steps.growth` after a converged step and halve after a failed one (back to the last
-    /// solution), until `s`
-    /// reaches 1, the steps shrink below `steps.min_step` or the iterations (counted from
-    /// `total`, each step capped at [`STEP_BUDGET`](super::tuning::cascade::STEP_BUDGET) through `budget`) reach
+    /// solution), until `s` reaches 1, the steps shrink below `steps.min_step` or the
+    /// iterations (counted on from `steps.spent`, each step capped at
+    /// [`STEP_BUDGET`](super::tuning::cascade::STEP_BUDGET) through `budget`) reach
     /// `steps.max_iterations`. A final polish solves `prob` itself, and where it fails, the
-    /// [`collapse`](super::collapse) step from its state (within the same budget). Where the homotopy
-    /// moves the input points, each step first moves every control point `c_j` with its
+    /// [`collapse`](super::collapse) step from its state (within the same budget). Where the
+    /// homotopy moves the input points, each step first moves every control point `c_j` with its
     /// point `p_j` (as a warm re-solve does): a segment near its collapsed limit has `c_j`
     /// within its tiny extent of `p_j`, and left behind it would start Newton on the wrong
     /// side of the point. Then `predict(state, moving, s, s_try)` may move the unknowns

@@ -31,13 +31,14 @@
 //! ([`PREDICT`]), then Newton corrects. On that lemniscate the path then takes 260 Newton
 //! iterations; without the prediction a decade of nudge cost 40–100 and the path ran out of
 //! budget halfway. (Points on their line are not predicted: on the grid walks of seed 7,
-//! two more κ walks failed with it.) The solutions are 69.2 ε from the collinear one at offsets ε from 1e-1 to
-//! 1e-9 of the drawing size (`tests/inflection.rs`).
+//! two more κ walks failed with it.) The solutions are 69.2 ε from the collinear one at
+//! offsets ε from 1e-1 to 1e-9 of the drawing size (`tests/inflection.rs`).
 //!
 //! Both signs of the normal are tried at points on their line (`+n_j` first). Like the
 //! point continuation, this runs only after the direct attempts and the shape continuations
 //! have failed, so no curve that converged before changes (but for a cascade with points
-//! near their line, which now ends [`BUDGET`] iterations earlier).
+//! near their line, which now ends [`BUDGET`] iterations earlier, or a quarter of a smaller
+//! budget).
 
 use super::cascade::Homotopy;
 use super::tuning::nudge::{BUDGET, COLLINEAR, END, MIN_STEP, NEAR, NUDGE, PREDICT, STEP_BUDGET};
