@@ -34,7 +34,13 @@
 //! two more κ walks failed with it.) The solutions are 69.2 ε from the collinear one at
 //! offsets ε from 1e-1 to 1e-9 of the drawing size (`tests/inflection.rs`).
 //!
-//! Both signs of the normal are tried at points on their line (`+n_j` first). Like the
+//! A point on its neighbours' line whose points two away both lie on one side of it is a
+//! flat spot, not an inflection: the curve bends the same way before and after it. Such a
+//! point is nudged to the other side only, where the input turns around it as it does around
+//! its neighbours (a rounded square's side, a lobe of a whole-pixel lemniscate). Nudged to
+//! the wrong side too, it took the 48-point lemniscates of radius 20 and 50 out of the κ
+//! pixel samples (77 of 84 instead of 79). At the other points on their line, both signs of
+//! the normal are tried (`+n_j` first). Like the
 //! point continuation, this runs only after the direct attempts and the shape continuations
 //! have failed, so no curve that converged before changes (but for a cascade with points
 //! near their line, which now ends [`BUDGET`] iterations earlier, or a quarter of a smaller
@@ -45,9 +51,9 @@ use super::tuning::nudge::{BUDGET, COLLINEAR, END, MIN_STEP, NEAR, NUDGE, PREDIC
 use super::{dot, Outcome, Problem, Settings, State, Workspace};
 
 /// One point's nudge: the displacement at the start of the path, and whether its sign is
-/// free (a point on its neighbours' line can be nudged to either side; a point just off the
-/// line is nudged further to its own side, so the path ends at the input on the branch the
-/// input is on).
+/// free (a point on its neighbours' line can be nudged to either side, but for a flat spot;
+/// a point just off the line is nudged further to its own side, so the path ends at the input
+/// on the branch the input is on).
 #[derive(Clone, Copy)]
 struct Nudge<const D: usize> {
     v: [f64; D],
@@ -96,9 +102,9 @@ fn nudges<const D: usize>(prob: &Problem<D>) -> Option<Vec<Nudge<D>>> {
             let along = dot(u, w) / uu;
             let off: [f64; D] = core::array::from_fn(|k| w[k] - along * u[k]);
             let reach = NUDGE * d;
-            let signed = sine <= COLLINEAR;
-            let base = if signed { 0.0 } else { dot(off, off).sqrt() };
-            let (n, to) = if signed {
+            let on_line = sine <= COLLINEAR;
+            let base = if on_line { 0.0 } else { dot(off, off).sqrt() };
+            let (n, to, signed) = if on_line {
                 let Some(k) = (0..D)
                     .filter(|&k| !fixed[k])
                     .min_by(|&x, &y| u[x].abs().total_cmp(&u[y].abs()))
@@ -110,12 +116,18 @@ fn nudges<const D: usize>(prob: &Problem<D>) -> Option<Vec<Nudge<D>>> {
                 for (nj, uj) in n.iter_mut().zip(u) {
                     *nj -= along * uj;
                 }
-                (n, reach)
+                // A flat spot: the points two away lie on one side of the line, so the
+                // curve bends the same way on both sides; the point goes to the other side,
+                // where the input turns the same way it does around it.
+                match flat_side(prob, i, n) {
+                    Some(side) => (n.map(|x| side * x), reach, false),
+                    None => (n, reach, true),
+                }
             } else {
-                (off, reach - base)
+                (off, reach - base, false)
             };
             let len = dot(n, n).sqrt();
-            if !(len > 1e-3 * if signed { 1.0 } else { d * sine }) || !(d > 0.0) || !(to > 0.0) {
+            if !(len > 1e-3 * if on_line { 1.0 } else { d * sine }) || !(d > 0.0) || !(to > 0.0) {
                 return none;
             }
             any = true;
@@ -127,6 +139,37 @@ fn nudges<const D: usize>(prob: &Problem<D>) -> Option<Vec<Nudge<D>>> {
         })
         .collect();
     any.then_some(out)
+}
+
+/// For a point on its neighbours' line with normal `n`: `Some(±1)` if the points two away
+/// along the curve both lie strictly on one side of the line (the side `∓n`), `None` if they
+/// lie on opposite sides or on the line, or one of them is missing (the ends of an open
+/// curve).
+fn flat_side<const D: usize>(prob: &Problem<D>, i: usize, n: [f64; D]) -> Option<f64> {
+    let m = prob.p.len();
+    let at = |k: isize| -> Option<[f64; D]> {
+        if prob.closed {
+            Some(prob.p[k.rem_euclid(m as isize) as usize])
+        } else if k == -1 {
+            Some(prob.ghost[0])
+        } else if k == m as isize {
+            Some(prob.ghost[1])
+        } else {
+            usize::try_from(k).ok().and_then(|k| prob.p.get(k).copied())
+        }
+    };
+    let (a, c) = (at(i as isize - 2)?, at(i as isize + 2)?);
+    let p = prob.p[i];
+    let (sa, sc) = (dot(n, super::sub(a, p)), dot(n, super::sub(c, p)));
+    let scale = dot(n, n).sqrt() * dot(super::sub(a, c), super::sub(a, c)).sqrt();
+    let tiny = COLLINEAR * scale;
+    if sa > tiny && sc > tiny {
+        Some(-1.0)
+    } else if sa < -tiny && sc < -tiny {
+        Some(1.0)
+    } else {
+        None
+    }
 }
 
 /// Whether `prob` has a point near its neighbours' line ([`NEAR`]) but none on it
@@ -146,13 +189,24 @@ pub(super) fn near_only<const D: usize>(prob: &Problem<D>) -> bool {
 /// The sine of the angle between `p_i - p_{i-1}` and `p_{i+1} - p_{i-1}` at point `i` of
 /// `prob` (the ghost points at the ends of an open curve); `None` where two of the points
 /// coincide.
+///
+/// `|u × w|² = Σ_{j<k} (u_j w_k − u_k w_j)²` (Lagrange's identity), summed over the 2×2
+/// minors: each minor is exact to a rounding of `|u| |w|`, so the sine is exact to about
+/// 1e-16. The shorter `|u|²|w|² − (u·w)²` cancels, and reads collinear whole-pixel points
+/// at sines near 1e-8, inside the near band.
 fn sine_at<const D: usize>(prob: &Problem<D>, i: usize) -> Option<f64> {
     let (a, c) = super::points::neighbours(prob, i);
     let u = super::sub(c, a);
     let w = super::sub(prob.p[i], a);
-    let (uu, ww, uw) = (dot(u, u), dot(w, w), dot(u, w));
-    let cross2 = (uu * ww - uw * uw).max(0.0);
-    (uu > 0.0 && ww > 0.0).then(|| (cross2 / (uu * ww)).sqrt())
+    let (uu, ww) = (dot(u, u), dot(w, w));
+    let mut cross2 = 0.0;
+    for j in 0..D {
+        for k in j + 1..D {
+            let m = u[j] * w[k] - u[k] * w[j];
+            cross2 += m * m;
+        }
+    }
+    (uu > 0.0 && ww > 0.0).then(|| (cross2.sqrt() / (uu.sqrt() * ww.sqrt())).min(1.0))
 }
 
 /// Whether point `i` of `prob` is collinear with its neighbours (the ghost points at the
@@ -231,12 +285,7 @@ impl<const D: usize, const B: usize> Workspace<D, B> {
                 for (j, n) in nudge.iter().enumerate() {
                     let r = n.offset(f1) / n.offset(f0);
                     let alpha = 1.0 - st.ratio(moving, j as isize - 1);
-                    if n.v != [0.0; D]
-                        && !n.signed
-                        && r < 1.0
-                        && alpha < PREDICT
-                        && st.lam[j] < PREDICT
-                    {
+                    if n.base > 0.0 && r < 1.0 && alpha < PREDICT && st.lam[j] < PREDICT {
                         st.shrink_block(moving, j, r);
                         any = true;
                     }
@@ -317,6 +366,51 @@ mod tests {
         // Far off the line: no nudge.
         prob.p[1] = [2.0, 0.1];
         assert!(!near_only(&prob));
+    }
+
+    #[test]
+    fn a_flat_spot_is_nudged_outwards() {
+        // A closed rounded square: (1, 0) is on the line through its neighbours, and the
+        // points two away, (-1, 1) and (3, 1), are both above it. The curve bends up on both
+        // sides, so the point goes down, and only down.
+        let prob = Problem::<2> {
+            closed: true,
+            p: vec![
+                [0.0, 0.0],
+                [1.0, 0.0],
+                [2.0, 0.0],
+                [3.0, 1.0],
+                [3.0, 2.0],
+                [2.0, 3.0],
+                [1.0, 3.0],
+                [0.0, 3.0],
+                [-1.0, 2.0],
+                [-1.0, 1.0],
+            ],
+            ghost: [[0.0; 2]; 2],
+            basis: Vec::new(),
+            tangents: Vec::new(),
+        };
+        let v = nudges(&prob).expect("collinear points");
+        assert!(!v[1].signed && !v[6].signed);
+        assert_eq!(v[1].v[0], 0.0);
+        assert!((v[1].v[1] + NUDGE).abs() < 1e-15, "{:?}", v[1].v);
+        assert!((v[6].v[1] - NUDGE).abs() < 1e-15, "{:?}", v[6].v);
+    }
+
+    #[test]
+    fn the_sine_of_collinear_points_does_not_cancel() {
+        // Whole pixels scaled by 0.02: `|u|²|w|² − (u·w)²` reads a sine of 1.3e-8 here.
+        let prob = Problem::<2> {
+            closed: false,
+            p: vec![[19.0 * 0.02, 13.0 * 0.02]],
+            ghost: [[17.0 * 0.02, 15.0 * 0.02], [21.0 * 0.02, 11.0 * 0.02]],
+            basis: Vec::new(),
+            tangents: Vec::new(),
+        };
+        let sine = sine_at(&prob, 0).unwrap();
+        assert!(sine < 1e-15, "{sine:e}");
+        assert!(collinear_at(&prob, 0));
     }
 
     #[test]
