@@ -134,6 +134,7 @@ pub fn draft(outline: &BezPath, options: &DraftOptions) -> Result<DraftedGlyph, 
         solver: Solver::new(),
         tangents: Vec::new(),
         seed: None,
+        turn_limit: f64::INFINITY,
     };
     let mut contours = Vec::new();
     let mut hausdorff = 0.0f64;
@@ -227,6 +228,9 @@ struct Drafter<'o> {
     /// A start for the next solve (taken by it): the last solution with the anchors a
     /// refinement adds seeded in ([`refine::seeded`]).
     seed: Option<SolvedState>,
+    /// The most a solve holding tangents may turn (radians), set for each piece by
+    /// [`Drafter::with_extremum_tangents`].
+    turn_limit: f64,
 }
 
 /// A candidate anchor: position along the piece and kind.

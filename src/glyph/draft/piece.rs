@@ -148,14 +148,7 @@ impl Drafter<'_> {
             }
         }
         if opts.extremum_tangents {
-            let held = self.with_extremum_tangents(
-                segs,
-                closed,
-                &anchors,
-                &original,
-                k,
-                solved.state.as_ref(),
-            );
+            let held = self.with_extremum_tangents(segs, closed, &anchors, &original, k, &solved);
             if let Some((more, held)) = held {
                 anchors = more;
                 solved = held;
@@ -187,6 +180,7 @@ mod tests {
             }),
             tangents: Vec::new(),
             seed: None,
+            turn_limit: f64::INFINITY,
         };
         let pieces = drafter.piece_or_parts(segs, true, 0);
         let mut at = segs[0].start();
