@@ -147,18 +147,19 @@ fn nudges<const D: usize>(prob: &Problem<D>) -> Option<Vec<Nudge<D>>> {
 /// curve).
 fn flat_side<const D: usize>(prob: &Problem<D>, i: usize, n: [f64; D]) -> Option<f64> {
     let m = prob.p.len();
-    let at = |k: isize| -> Option<[f64; D]> {
-        if prob.closed {
-            Some(prob.p[k.rem_euclid(m as isize) as usize])
-        } else if k == -1 {
-            Some(prob.ghost[0])
-        } else if k == m as isize {
-            Some(prob.ghost[1])
-        } else {
-            usize::try_from(k).ok().and_then(|k| prob.p.get(k).copied())
-        }
+    // The neighbour before the one before, and after the one after (ghosts included).
+    let before = match (i, prob.closed) {
+        (0, false) => return None,
+        (0, true) => m - 1,
+        _ => i - 1,
     };
-    let (a, c) = (at(i as isize - 2)?, at(i as isize + 2)?);
+    let after = match (i + 1 == m, prob.closed) {
+        (true, false) => return None,
+        (true, true) => 0,
+        _ => i + 1,
+    };
+    let a = super::points::neighbours(prob, before).0;
+    let c = super::points::neighbours(prob, after).1;
     let p = prob.p[i];
     let (sa, sc) = (dot(n, super::sub(a, p)), dot(n, super::sub(c, p)));
     let scale = dot(n, n).sqrt() * dot(super::sub(a, c), super::sub(a, c)).sqrt();

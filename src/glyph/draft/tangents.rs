@@ -6,6 +6,7 @@ use kurbo::{ParamCurve, PathSeg, Vec2};
 use super::distance::{within, Target};
 use super::refine::seeded;
 use super::{locate, AnchorKind, Cand, Drafter, Solved};
+use crate::glyph::nodes::turn_angle;
 
 /// The original's unit tangent at `s` (a position along `segs`, as
 /// [`eval_at`](super::eval_at) takes it), in its direction of travel: the direction of a
@@ -144,10 +145,9 @@ fn turning(segs: impl Iterator<Item = PathSeg>, closed: bool) -> f64 {
                 .filter(|d| d.hypot2() > 0.0),
         );
     }
-    let angle = |a: Vec2, b: Vec2| a.cross(b).atan2(a.dot(b)).abs();
-    let mut total: f64 = legs.windows(2).map(|w| angle(w[0], w[1])).sum();
+    let mut total: f64 = legs.windows(2).filter_map(|w| turn_angle(w[0], w[1])).sum();
     if let (true, Some(&first), Some(&last)) = (closed, legs.first(), legs.last()) {
-        total += angle(last, first);
+        total += turn_angle(last, first).unwrap_or(0.0);
     }
     total
 }
