@@ -134,28 +134,19 @@ function draw() {
       ctx.setLineDash([]);
     }
   }
-  // Points, in screen pixels: the active contour's red, the others' grey; one path per
-  // contour (a path per point costs a frame on a long drawing).
-  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
-  ctx.lineWidth = 1.5;
+  // Points, in screen pixels: the active contour's red, the others' grey. Each marker is a
+  // small bitmap drawn once (see `marker`) and copied per point: rasterizing hundreds of
+  // circles as one path costs a 300-point drawing about 5 ms a frame on a software canvas.
+  ctx.setTransform(1, 0, 0, 1, 0, 0);
   for (let k = 0; k < contours; k++) {
     const on = k === active;
-    const r = on ? 4.5 : 3.5;
-    ctx.beginPath();
     engine.points(k).forEach((p) => {
+      const m = marker(on, p.corner);
       const q = toScreen(p);
-      if (p.corner) {
-        ctx.rect(q.x - r, q.y - r, 2 * r, 2 * r);
-      } else {
-        ctx.moveTo(q.x + r, q.y);
-        ctx.arc(q.x, q.y, r, 0, 2 * Math.PI);
-      }
+      ctx.drawImage(m.image, Math.round(q.x * dpr) - m.half, Math.round(q.y * dpr) - m.half);
     });
-    ctx.fillStyle = "#fff";
-    ctx.fill();
-    ctx.strokeStyle = on ? "#d11" : "#888";
-    ctx.stroke();
   }
+  ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
   const sel = ui.sel && ui.sel.contour < contours ? engine.points(ui.sel.contour)[ui.sel.index] : null;
   if (sel) {
     const q = toScreen(sel);
@@ -175,6 +166,33 @@ function draw() {
     ctx.strokeStyle = "#d11";
     ctx.stroke();
   }
+}
+
+// A point marker as a bitmap at the canvas's device pixels: a white disc (a square for a
+// corner) with a red outline on the active contour, grey on the others, of radius 4.5 or 3.5
+// CSS px and a 1.5 px line. `half` is the device pixel of the centre. Cached per look and
+// device pixel ratio.
+const markers = new Map();
+function marker(active, corner) {
+  const key = `${active}/${corner}/${dpr}`;
+  let m = markers.get(key);
+  if (m) return m;
+  const r = active ? 4.5 : 3.5;
+  const half = Math.ceil((r + 1.5) * dpr);
+  const sprite = new OffscreenCanvas(2 * half + 1, 2 * half + 1);
+  const g = sprite.getContext("2d");
+  g.setTransform(dpr, 0, 0, dpr, half + 0.5, half + 0.5);
+  g.beginPath();
+  if (corner) g.rect(-r, -r, 2 * r, 2 * r);
+  else g.arc(0, 0, r, 0, 2 * Math.PI);
+  g.fillStyle = "#fff";
+  g.fill();
+  g.lineWidth = 1.5;
+  g.strokeStyle = active ? "#d11" : "#888";
+  g.stroke();
+  m = { image: sprite.transferToImageBitmap(), half };
+  markers.set(key, m);
+  return m;
 }
 
 // ---- Tangent handles ----
